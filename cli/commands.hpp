@@ -1,0 +1,14 @@
+// Subcommands of the ecorail program. Each lives in its own cli/cmd_*.cpp and registers itself
+// on the CLI11 app; main.cpp turns exceptions into exit codes (InputError: 2, others: 1).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace ecorail::cli {
+
+void add_solve_command(CLI::App& app);
+void add_min_time_command(CLI::App& app);
+void add_fit_envelope_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
+
+}  // namespace ecorail::cli

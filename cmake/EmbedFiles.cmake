@@ -1,0 +1,18 @@
+# embed_files(OUT file...): writes a C++ source defining ecorail::embedded::find(name), which
+# returns the text of each listed file by its base name (e.g. "stations.csv").
+function(embed_files out)
+  set(body "#include <string_view>\n#include <utility>\nnamespace ecorail::embedded {\nnamespace {\n")
+  set(table "")
+  set(i 0)
+  foreach(f ${ARGN})
+    file(READ ${f} content)
+    get_filename_component(name ${f} NAME)
+    string(APPEND body "constexpr char k${i}[] = R\"ecorail_embed(${content})ecorail_embed\";\n")
+    string(APPEND table "  {\"${name}\", k${i}},\n")
+    math(EXPR i "${i} + 1")
+  endforeach()
+  string(APPEND body "constexpr std::pair<std::string_view, std::string_view> kFiles[] = {\n${table}};\n}  // namespace\n")
+  string(APPEND body "std::string_view find(std::string_view name) {\n  for (const auto& [n, text] : kFiles) if (n == name) return text;\n  return {};\n}\n}  // namespace ecorail::embedded\n")
+  file(GENERATE OUTPUT ${out} CONTENT "${body}")
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${ARGN})
+endfunction()

@@ -1,0 +1,19 @@
+// Builds the physics::Route between two stations of a Line, in the direction of travel: the
+// position runs from 0 at the departure station, gradients change sign when the train runs
+// towards decreasing kilometre posts, and the three tables are merged into segments of constant
+// gradient, curve and limit. Errors (unknown station, same station twice, a stretch the tables
+// do not cover, a limit above the train's maximum speed) are InputErrors naming file and row.
+#pragma once
+
+#include <string>
+
+#include "data/line.hpp"
+#include "physics/route.hpp"
+#include "physics/train.hpp"
+
+namespace ecorail::data {
+
+physics::Route build_route(const Line& line, const std::string& from, const std::string& to,
+                           const physics::Train& train);
+
+}  // namespace ecorail::data

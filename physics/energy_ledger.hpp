@@ -1,0 +1,26 @@
+// EnergyLedger: the energy account of a run. Traction work is the work of the traction force at
+// the wheel (what model.md calls traction energy); braking work is the work of the braking
+// force; regenerated energy is the braking work times the regeneration efficiency; traction
+// input is the traction work divided by the traction efficiency (energy drawn from the line).
+#pragma once
+
+namespace ecorail::physics {
+
+struct EnergyLedger {
+  double traction_work_J = 0.0;
+  double brake_work_J = 0.0;
+  double regen_J = 0.0;
+  double traction_input_J = 0.0;
+
+  void add(double traction_work_J_, double brake_work_J_, double traction_efficiency,
+           double regen_efficiency) {
+    traction_work_J += traction_work_J_;
+    brake_work_J += brake_work_J_;
+    regen_J += regen_efficiency * brake_work_J_;
+    traction_input_J += traction_work_J_ / traction_efficiency;
+  }
+  // Energy drawn from the supply less the energy fed back.
+  double net_J() const { return traction_input_J - regen_J; }
+};
+
+}  // namespace ecorail::physics

@@ -1,0 +1,63 @@
+#include "physics/force_envelope.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "physics/units.hpp"
+
+namespace ecorail::physics {
+
+ForceEnvelope ForceEnvelope::piecewise(std::vector<PolynomialPiece> pieces, double power_cap_kW) {
+  if (pieces.empty()) throw std::invalid_argument("force envelope needs at least one piece");
+  std::sort(pieces.begin(), pieces.end(),
+            [](const auto& a, const auto& b) { return a.from_kmh < b.from_kmh; });
+  ForceEnvelope e;
+  e.pieces_ = std::move(pieces);
+  e.power_cap_kW_ = power_cap_kW;
+  return e;
+}
+
+ForceEnvelope ForceEnvelope::table(std::vector<TablePoint> points, double power_cap_kW) {
+  if (points.empty()) throw std::invalid_argument("force table needs at least one point");
+  std::sort(points.begin(), points.end(),
+            [](const auto& a, const auto& b) { return a.speed_kmh < b.speed_kmh; });
+  ForceEnvelope e;
+  e.points_ = std::move(points);
+  e.power_cap_kW_ = power_cap_kW;
+  return e;
+}
+
+double ForceEnvelope::raw_kN(double v_kmh) const {
+  if (!points_.empty()) {
+    if (v_kmh <= points_.front().speed_kmh) return points_.front().force_kN;
+    if (v_kmh >= points_.back().speed_kmh) return points_.back().force_kN;
+    auto it = std::upper_bound(points_.begin(), points_.end(), v_kmh,
+                               [](double v, const TablePoint& p) { return v < p.speed_kmh; });
+    const TablePoint& hi = *it;
+    const TablePoint& lo = *(it - 1);
+    const double w = (v_kmh - lo.speed_kmh) / (hi.speed_kmh - lo.speed_kmh);
+    return lo.force_kN + w * (hi.force_kN - lo.force_kN);
+  }
+  // The piece whose [from, to) holds v; beyond the last piece its polynomial is extrapolated.
+  const PolynomialPiece* piece = &pieces_.front();
+  for (const auto& p : pieces_) {
+    if (v_kmh >= p.from_kmh) piece = &p;
+  }
+  double f = 0.0;
+  for (auto c = piece->coeffs_kN.rbegin(); c != piece->coeffs_kN.rend(); ++c) f = f * v_kmh + *c;
+  return f;
+}
+
+double ForceEnvelope::force_kN_at_kmh(double v_kmh) const {
+  double f = std::max(0.0, raw_kN(v_kmh));
+  if (power_cap_kW_ > 0.0 && v_kmh > 0.0) {
+    f = std::min(f, power_cap_kW_ / units::kmh_to_ms(v_kmh));  // kW / (m/s) = kN
+  }
+  return f;
+}
+
+double ForceEnvelope::force_N(double v_ms) const {
+  return units::kN_to_N(force_kN_at_kmh(units::ms_to_kmh(v_ms)));
+}
+
+}  // namespace ecorail::physics

@@ -1,0 +1,164 @@
+#include "physics/motion.hpp"
+
+#include <algorithm>
+
+namespace ecorail::physics {
+
+double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) const {
+  const double w = train_->resistance_N(v_ms, seg.track_N_per_kN());
+  switch (c) {
+    case Control::MaxTraction:
+      return train_->max_traction_N(v_ms, w);
+    case Control::Hold:
+      return std::clamp(w, -train_->max_brake_N(v_ms, w), train_->max_traction_N(v_ms, w));
+    case Control::Coast:
+      return 0.0;
+    case Control::MaxBrake:
+      return -train_->max_brake_N(v_ms, w);
+  }
+  return 0.0;
+}
+
+double Motion::de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const {
+  const double v = speed_from_e(e);
+  const double w = train_->resistance_N(v, seg.track_N_per_kN());
+  double u = 0.0;
+  switch (c) {
+    case Control::MaxTraction:
+      u = train_->max_traction_N(v, w);
+      break;
+    case Control::Hold:
+      u = std::clamp(w, -train_->max_brake_N(v, w), train_->max_traction_N(v, w));
+      break;
+    case Control::Coast:
+      u = 0.0;
+      break;
+    case Control::MaxBrake:
+      u = -train_->max_brake_N(v, w);
+      break;
+  }
+  *force_N = u;
+  return (u - w) / train_->effective_mass_kg();
+}
+
+namespace {
+
+Regime classify(double u, double max_traction, double max_brake) {
+  constexpr double kFull = 0.99;   // within 1 % of the envelope counts as full
+  constexpr double kZero_N = 1.0;  // below 1 N the train is coasting
+  if (u > kZero_N) return u >= kFull * max_traction ? Regime::FullTraction : Regime::PartialTraction;
+  if (u < -kZero_N) return -u >= kFull * max_brake ? Regime::FullBrake : Regime::PartialBrake;
+  return Regime::Coast;
+}
+
+}  // namespace
+
+Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order) const {
+  const RouteSegment& seg = route_->at(s_m);
+  Substep out;
+  double u1, u2, u3, u4;
+  double e1;
+  double work;
+  const double k1 = de_ds(c, e0, seg, &u1);
+  if (rk_order >= 4) {
+    const double k2 = de_ds(c, e0 + 0.5 * h * k1, seg, &u2);
+    const double k3 = de_ds(c, e0 + 0.5 * h * k2, seg, &u3);
+    const double k4 = de_ds(c, e0 + h * k3, seg, &u4);
+    e1 = e0 + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    work = h / 6.0 * (u1 + 2.0 * u2 + 2.0 * u3 + u4);
+  } else {
+    const double k2 = de_ds(c, e0 + h * k1, seg, &u2);
+    e1 = e0 + 0.5 * h * (k1 + k2);
+    work = 0.5 * h * (u1 + u2);
+  }
+  const double v0 = speed_from_e(e0);
+  out.length_m = h;
+
+  if (e1 <= 0.0) {
+    // Stopped inside the substep: e falls nearly linearly, so locate the stop by proportion.
+    const double frac = e0 > 0.0 ? e0 / (e0 - e1) : 0.0;
+    out.stopped = true;
+    out.length_m = h * frac;
+    out.e_end = 0.0;
+    out.time_s = v0 > 0.0 ? 2.0 * out.length_m / v0 : 0.0;
+    work *= frac;
+  } else {
+    const double e_env = envelope_->e_at(s_m + h);
+    if (e1 > e_env) {
+      // Leaving the envelope: apply the constant force that lands on it, but no more braking
+      // than the train has.
+      const double e_mid = 0.5 * (e0 + e_env);
+      const double v_mid = speed_from_e(e_mid);
+      const double w = train_->resistance_N(v_mid, seg.track_N_per_kN());
+      const double m = train_->effective_mass_kg();
+      double u = m * (e_env - e0) / h + w;
+      const double u_min = -train_->max_brake_N(v_mid, w);
+      e1 = e_env;
+      if (u < u_min) {
+        u = u_min;
+        e1 = e0 + h * (u - w) / m;
+        out.overspeed_ms = speed_from_e(e1) - speed_from_e(e_env);
+      }
+      work = u * h;
+      out.regime = classify(u, train_->max_traction_N(v_mid, w), train_->max_brake_N(v_mid, w));
+    } else {
+      switch (c) {
+        case Control::MaxTraction:
+          out.regime = Regime::FullTraction;
+          break;
+        case Control::Coast:
+          out.regime = Regime::Coast;
+          break;
+        case Control::MaxBrake:
+          out.regime = Regime::FullBrake;
+          break;
+        case Control::Hold: {
+          const double w = train_->resistance_N(v0, seg.track_N_per_kN());
+          out.regime = classify(u1, train_->max_traction_N(v0, w), train_->max_brake_N(v0, w));
+          break;
+        }
+      }
+    }
+    out.e_end = e1;
+    const double v1 = speed_from_e(e1);
+    if (v0 + v1 <= 0.0) {
+      out.stopped = true;  // standing still and not moving off
+      out.length_m = 0.0;
+      work = 0.0;
+    } else {
+      out.time_s = 2.0 * h / (v0 + v1);
+    }
+  }
+  if (work > 0.0) {
+    out.traction_work_J = work;
+  } else {
+    out.brake_work_J = -work;
+  }
+  out.mean_force_N = out.length_m > 0.0 ? work / out.length_m : u1;
+  return out;
+}
+
+Advance Motion::advance(double s0, double e0, double s1, Control c, const StepSettings& st) const {
+  Advance out;
+  double s = s0;
+  double e = e0;
+  while (s < s1 - 1e-9) {
+    const double seg_end = route_->at(s).end_m;
+    const double next = std::min({s1, seg_end, s + st.max_substep_m});
+    const Substep sub = substep(s, e, next - s, c, st.rk_order);
+    out.time_s += sub.time_s;
+    out.traction_work_J += sub.traction_work_J;
+    out.brake_work_J += sub.brake_work_J;
+    e = sub.e_end;
+    if (sub.stopped) {
+      // A stop that lands on the end position (within a millimetre) is an arrival, not a stall.
+      out.stalled = s + sub.length_m < s1 - 1e-3;
+      break;
+    }
+    s = next;
+  }
+  out.e_end = e;
+  return out;
+}
+
+}  // namespace ecorail::physics

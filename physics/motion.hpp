@@ -1,0 +1,75 @@
+// Motion: integrates the equation of motion of a Train on a Route over distance, with the
+// specific kinetic energy e = v^2/2 as the state (de/ds = (u - W) / M_eff, smooth even at a
+// standing start) and time accumulated per substep as 2 h / (v0 + v1), exact for constant
+// acceleration. One substep never crosses a route change, so gradient, curve and limit are
+// constant inside it (the events of the integrator). Whenever the commanded control would
+// leave the speed envelope, the force is reduced (down to full braking) so the train lands on
+// it: that is how limits and the final braking curve are followed. The DP transitions (coarse
+// substeps, Heun) and the forward re-simulation (fine substeps, RK4) share this one kernel.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "physics/control.hpp"
+#include "physics/route.hpp"
+#include "physics/speed_envelope.hpp"
+#include "physics/train.hpp"
+
+namespace ecorail::physics {
+
+struct StepSettings {
+  double max_substep_m = 1.0;
+  int rk_order = 2;  // 2 (Heun) or 4 (classic Runge-Kutta)
+};
+
+// Result of one substep of constant control on constant track.
+struct Substep {
+  double e_end = 0.0;
+  double time_s = 0.0;
+  double length_m = 0.0;  // shorter than requested if the train stopped
+  double traction_work_J = 0.0;
+  double brake_work_J = 0.0;
+  double mean_force_N = 0.0;  // work / length, signed (traction positive)
+  Regime regime = Regime::Coast;
+  bool stopped = false;       // speed reached zero inside the substep
+  double overspeed_ms = 0.0;  // above the envelope at the end (could not brake enough)
+};
+
+// Result of advancing over a distance with one control (several substeps).
+struct Advance {
+  double e_end = 0.0;
+  double time_s = 0.0;
+  double traction_work_J = 0.0;
+  double brake_work_J = 0.0;
+  bool stalled = false;  // stopped before reaching the end position
+};
+
+class Motion {
+ public:
+  Motion(const Train& train, const Route& route, const SpeedEnvelope& envelope)
+      : train_(&train), route_(&route), envelope_(&envelope) {}
+
+  // One substep of length h from (s, e) on the segment holding s; h must not cross a segment end.
+  Substep substep(double s_m, double e, double h_m, Control c, int rk_order) const;
+  // Advances from s0 to s1 with control c, splitting at route changes and max_substep.
+  Advance advance(double s0_m, double e0, double s1_m, Control c, const StepSettings& st) const;
+
+  // Net specific force (u - W) / M_eff for control c at speed v on a segment, and the force u.
+  double applied_force_N(Control c, double v_ms, const RouteSegment& seg) const;
+
+  const Train& train() const { return *train_; }
+  const Route& route() const { return *route_; }
+  const SpeedEnvelope& envelope() const { return *envelope_; }
+
+ private:
+  double de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const;
+
+  const Train* train_;
+  const Route* route_;
+  const SpeedEnvelope* envelope_;
+};
+
+inline double speed_from_e(double e) { return e > 0.0 ? std::sqrt(2.0 * e) : 0.0; }
+
+}  // namespace ecorail::physics

@@ -1,0 +1,51 @@
+#include "physics/route.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ecorail::physics {
+
+double RouteSegment::track_N_per_kN() const {
+  const double curve = curve_radius_m > 0.0 ? 600.0 / curve_radius_m : 0.0;
+  return gradient_permille + curve;
+}
+
+Route::Route(std::vector<RouteSegment> segments, double origin_km_post_m, int km_post_direction,
+             std::string from_name, std::string to_name)
+    : segments_(std::move(segments)),
+      origin_km_post_m_(origin_km_post_m),
+      km_post_direction_(km_post_direction),
+      from_(std::move(from_name)),
+      to_(std::move(to_name)) {
+  if (segments_.empty()) throw std::invalid_argument("route has no segments");
+  double expect = 0.0;
+  for (const auto& seg : segments_) {
+    if (std::abs(seg.start_m - expect) > 1e-9 || !(seg.end_m > seg.start_m)) {
+      throw std::invalid_argument("route segments must be contiguous from 0 with positive length");
+    }
+    expect = seg.end_m;
+  }
+}
+
+std::size_t Route::index_at(double s_m) const {
+  auto it = std::upper_bound(segments_.begin(), segments_.end(), s_m,
+                             [](double s, const RouteSegment& seg) { return s < seg.start_m; });
+  if (it == segments_.begin()) return 0;
+  return static_cast<std::size_t>(it - segments_.begin()) - 1;
+}
+
+double Route::speed_limit_ms(double s_m) const {
+  const std::size_t i = index_at(s_m);
+  double v = segments_[i].speed_limit_ms;
+  if (i > 0 && s_m == segments_[i].start_m) v = std::min(v, segments_[i - 1].speed_limit_ms);
+  return v;
+}
+
+std::vector<double> Route::change_points_m() const {
+  std::vector<double> points;
+  for (std::size_t i = 1; i < segments_.size(); ++i) points.push_back(segments_[i].start_m);
+  return points;
+}
+
+}  // namespace ecorail::physics

@@ -1,0 +1,79 @@
+#include "physics/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ecorail::physics {
+
+SimulationResult simulate(const Motion& motion, const ControlLaw& law,
+                          const std::vector<double>& breakpoints_m, const SimulationOptions& opt) {
+  const Route& route = motion.route();
+  const Train& train = motion.train();
+  const double length = route.length_m();
+  std::vector<double> events = breakpoints_m;
+  for (double p : route.change_points_m()) events.push_back(p);
+  std::sort(events.begin(), events.end());
+
+  SimulationResult out;
+  double s = opt.start_position_m;
+  double e = 0.5 * opt.start_speed_ms * opt.start_speed_ms;
+  double t = 0.0;
+  out.trace.reserve(static_cast<std::size_t>((length - s) / opt.step_m) + events.size() + 2);
+  out.trace.push_back({0.0, s, opt.start_speed_ms, 0.0, 0.0, Regime::Coast});
+  auto next_event = std::upper_bound(events.begin(), events.end(), s + 1e-9);
+
+  while (s < length - 1e-9) {
+    while (next_event != events.end() && *next_event <= s + 1e-9) ++next_event;
+    double next = std::min(length, s + opt.step_m);
+    if (next_event != events.end()) next = std::min(next, *next_event);
+    const double v0 = speed_from_e(e);
+    const Control c = law(s, v0);
+    const Substep sub = motion.substep(s, e, next - s, c, opt.rk_order);
+    out.energy.add(sub.traction_work_J, sub.brake_work_J, train.traction_efficiency,
+                   train.regen_efficiency);
+    t += sub.time_s;
+    s += sub.length_m;
+    e = sub.e_end;
+    const double v1 = speed_from_e(e);
+    const double accel = sub.time_s > 0.0 ? (v1 - v0) / sub.time_s : 0.0;
+    out.trace.push_back({t, s, v1, accel, sub.mean_force_N, sub.regime});
+    out.max_overspeed_ms =
+        std::max(out.max_overspeed_ms, v1 - motion.envelope().static_limit_ms(s));
+    if (sub.stopped) {
+      out.stopped_early = s < length - 1e-3;
+      break;
+    }
+  }
+  out.running_time_s = t;
+  out.end_position_m = s;
+  out.end_speed_ms = speed_from_e(e);
+  if (out.end_speed_ms > 0.0) {
+    // Still moving at the end: the stop error is where full braking would bring it to rest.
+    const RouteSegment& last = route.segments().back();
+    double ee = e;
+    double extra = 0.0;
+    while (ee > 0.0 && extra < 1e4) {
+      const double v = speed_from_e(ee);
+      const double w = train.resistance_N(v, last.track_N_per_kN());
+      ee += opt.step_m * (-train.max_brake_N(v, w) - w) / train.effective_mass_kg();
+      extra += opt.step_m;
+    }
+    out.end_position_m = length + extra;
+  }
+  out.stop_error_m = out.end_position_m - length;
+  return out;
+}
+
+SimulationResult simulate(const Motion& motion, const ControlProgram& program,
+                          const SimulationOptions& opt) {
+  std::vector<double> breakpoints;
+  for (const auto& step : program) breakpoints.push_back(step.from_m);
+  const ControlLaw law = [&program](double s_m, double) {
+    auto it = std::upper_bound(program.begin(), program.end(), s_m + 1e-9,
+                               [](double s, const ProgramStep& p) { return s < p.from_m; });
+    return it == program.begin() ? program.front().control : (it - 1)->control;
+  };
+  return simulate(motion, law, breakpoints, opt);
+}
+
+}  // namespace ecorail::physics

@@ -1,0 +1,68 @@
+#include "physics/speed_envelope.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ecorail::physics {
+
+namespace {
+
+// de/ds of full braking, integrated backwards (so the sign is positive): (B + W) / M_eff.
+double backward_brake_slope(const Train& train, double e, double track_N_per_kN) {
+  const double v = e > 0.0 ? std::sqrt(2.0 * e) : 0.0;
+  const double w = train.resistance_N(v, track_N_per_kN);
+  return (train.max_brake_N(v, w) + w) / train.effective_mass_kg();
+}
+
+}  // namespace
+
+SpeedEnvelope::SpeedEnvelope(const Train& train, const Route& route, double resolution_m) {
+  length_ = route.length_m();
+  const auto samples = static_cast<std::size_t>(std::max(1.0, std::ceil(length_ / resolution_m)));
+  h_ = length_ / static_cast<double>(samples);
+  e_static_.assign(samples + 1, 0.0);
+  // Static limit: the strictest limit of any segment within one sample of the position.
+  for (std::size_t k = 0; k <= samples; ++k) {
+    const double s = static_cast<double>(k) * h_;
+    const std::size_t lo = route.index_at(std::max(0.0, s - h_));
+    const std::size_t hi = route.index_at(std::min(length_, s + h_));
+    double v = train.max_speed_ms;
+    for (std::size_t i = lo; i <= hi; ++i) v = std::min(v, route.segments()[i].speed_limit_ms);
+    e_static_[k] = 0.5 * v * v;
+  }
+  // Braking curves: sweep backwards from the stop with full braking (RK4 in e), never above
+  // the static limit.
+  e_.assign(samples + 1, 0.0);
+  e_[samples] = 0.0;
+  for (std::size_t k = samples; k-- > 0;) {
+    const double track = route.at((static_cast<double>(k) + 0.5) * h_).track_N_per_kN();
+    const double e1 = e_[k + 1];
+    const double k1 = backward_brake_slope(train, e1, track);
+    const double k2 = backward_brake_slope(train, e1 + 0.5 * h_ * k1, track);
+    const double k3 = backward_brake_slope(train, e1 + 0.5 * h_ * k2, track);
+    const double k4 = backward_brake_slope(train, e1 + h_ * k3, track);
+    const double e_brake = e1 + h_ / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    e_[k] = std::min(e_static_[k], e_brake);
+  }
+}
+
+namespace {
+double interpolate(const std::vector<double>& samples, double h, double s) {
+  if (s <= 0.0) return samples.front();
+  const double x = s / h;
+  const auto k = static_cast<std::size_t>(x);
+  if (k + 1 >= samples.size()) return samples.back();
+  const double w = x - static_cast<double>(k);
+  return samples[k] + w * (samples[k + 1] - samples[k]);
+}
+}  // namespace
+
+double SpeedEnvelope::e_at(double s_m) const { return interpolate(e_, h_, s_m); }
+
+double SpeedEnvelope::v_at(double s_m) const { return std::sqrt(2.0 * std::max(0.0, e_at(s_m))); }
+
+double SpeedEnvelope::static_limit_ms(double s_m) const {
+  return std::sqrt(2.0 * interpolate(e_static_, h_, s_m));
+}
+
+}  // namespace ecorail::physics

@@ -1,0 +1,54 @@
+// Train: a single-mass-point model of one train. It carries the traction and braking envelopes,
+// the Davis resistance (N/kN with v in km/h, the convention of the contest and of most metro
+// literature), the rotating-mass factor, acceleration limits on the net acceleration, and the
+// traction and regeneration efficiencies. The equation of motion is
+//   M (1 + rho) dv/dt = u - W(v, s),   -B(v) <= u <= F(v),   a_min <= dv/dt <= a_max,
+// with W = (w0(v) + w_track(s)) * M g / 1000. Resistance uses the static mass M; inertia uses
+// the effective mass M (1 + rho).
+#pragma once
+
+#include <string>
+
+#include "physics/force_envelope.hpp"
+
+namespace ecorail::physics {
+
+struct DavisCoefficients {
+  double A = 0.0;  // N/kN
+  double B = 0.0;  // N/kN per km/h
+  double C = 0.0;  // N/kN per (km/h)^2
+};
+
+struct Train {
+  std::string name;
+  double mass_kg = 0.0;
+  double rotating_mass_factor = 0.0;
+  double gravity_m_s2 = 9.8;
+  double max_speed_ms = 0.0;
+  double max_accel_m_s2 = 1.0;  // limit on dv/dt while motoring
+  double max_decel_m_s2 = 1.0;  // limit on -dv/dt while braking
+  double traction_efficiency = 1.0;
+  double regen_efficiency = 0.95;
+  DavisCoefficients davis;
+  ForceEnvelope traction;
+  ForceEnvelope braking;
+
+  double effective_mass_kg() const { return mass_kg * (1.0 + rotating_mass_factor); }
+  // Converts a specific resistance in N/kN into a force in N for this train's weight.
+  double specific_to_N(double w_N_per_kN) const {
+    return w_N_per_kN * mass_kg * gravity_m_s2 / 1000.0;
+  }
+  // Davis specific resistance w0 in N/kN at v (m/s).
+  double davis_N_per_kN(double v_ms) const;
+  // Total resistance in N at speed v for a track term (gradient + curve) in N/kN.
+  double resistance_N(double v_ms, double track_N_per_kN) const {
+    return specific_to_N(davis_N_per_kN(v_ms) + track_N_per_kN);
+  }
+  // Largest traction force applicable at v against resistance W: the envelope, reduced where the
+  // net acceleration would exceed max_accel.
+  double max_traction_N(double v_ms, double resistance_N) const;
+  // Largest braking force (a positive number) applicable at v against resistance W.
+  double max_brake_N(double v_ms, double resistance_N) const;
+};
+
+}  // namespace ecorail::physics

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ecorail builds against. Idempotent: packages already present
+# are skipped, so a machine that has everything does not touch the network.
+set -euo pipefail
+packages=(cmake g++ make pkg-config libeigen3-dev libceres-dev libgtest-dev libgmock-dev
+  libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxlsxwriter-dev
+  gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
