@@ -52,11 +52,17 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     const RouteSegment& last = route.segments().back();
     double ee = e;
     double extra = 0.0;
+    const double h = 1e-3;
     while (ee > 0.0 && extra < 1e4) {
       const double v = speed_from_e(ee);
       const double w = train.resistance_N(v, last.track_N_per_kN());
-      ee += opt.step_m * (-train.max_brake_N(v, w) - w) / train.effective_mass_kg();
-      extra += opt.step_m;
+      const double slope = (-train.max_brake_N(v, w) - w) / train.effective_mass_kg();
+      if (ee + h * slope <= 0.0) {
+        extra += ee / -slope;
+        break;
+      }
+      ee += h * slope;
+      extra += h;
     }
     out.end_position_m = length + extra;
   }

@@ -1,0 +1,30 @@
+// Policy extraction: turns a value function into a control program with continuous switch
+// points. Starting from rest, the train is driven forward; at each decision point every control
+// is scored by integrating it to the next grid position and adding the interpolated
+// cost-to-go there (a one-step look-ahead on the DP's value function, valid at any off-grid
+// state). When the best control changes, the switch position is located by bisection, so the
+// program's switch points (and so its running time) vary continuously with lambda instead of
+// jumping from grid point to grid point.
+#pragma once
+
+#include "dp/backward_sweep.hpp"
+#include "dp/objective.hpp"
+#include "physics/motion.hpp"
+#include "physics/simulator.hpp"
+
+namespace ecorail::dp {
+
+struct ExtractionSettings {
+  double decision_step_m = 1.0;
+  int bisections = 8;
+  // Relative margin by which a challenger must beat the incumbent control (hysteresis against
+  // chattering between controls whose look-ahead costs are equal to rounding).
+  double tie_tolerance = 1e-7;
+  physics::StepSettings dp_step;  // the same integration as the transition table
+};
+
+physics::ControlProgram extract_program(const physics::Motion& motion, const StageGrid& grid,
+                                        const ValueFunction& value, Objective objective,
+                                        const ExtractionSettings& settings);
+
+}  // namespace ecorail::dp

@@ -1,0 +1,69 @@
+// SectionEngine: the single-section optimal-control engine. Construction builds the speed
+// envelope, the grid and the lambda-independent transition table (the expensive, parallel
+// part) once; run(lambda) then does one backward sweep, extracts the control program and
+// re-simulates it at a fine step, returning the measured run. Journeys, frontiers and the
+// lambda search for a running time are all built on run(lambda). The engine owns copies of
+// the train and route, so it is self-contained.
+#pragma once
+
+#include <memory>
+
+#include "dp/backward_sweep.hpp"
+#include "dp/objective.hpp"
+#include "dp/policy_extraction.hpp"
+#include "dp/stage_grid.hpp"
+#include "dp/transition_table.hpp"
+#include "physics/simulator.hpp"
+
+namespace ecorail::dp {
+
+struct EngineOptions {
+  GridSpec grid;
+  Objective objective = Objective::Traction;
+  double resim_step_m = 0.05;        // fine step of the forward re-simulation (RK4)
+  double envelope_resolution_m = 0.1;
+  double decision_step_m = 1.0;      // policy extraction
+};
+
+struct LambdaRun {
+  double lambda = 0.0;
+  physics::ControlProgram program;
+  physics::SimulationResult sim;
+  double cost_J = 0.0;  // energy cost by the objective, from the re-simulation
+};
+
+class SectionEngine {
+ public:
+  SectionEngine(const physics::Train& train, const physics::Route& route,
+                const EngineOptions& options);
+  SectionEngine(const SectionEngine&) = delete;
+  SectionEngine& operator=(const SectionEngine&) = delete;
+
+  LambdaRun run(double lambda) const;
+  // Value function of the last run (for policy tables and diagnostics).
+  const ValueFunction& value() const { return value_; }
+  // Flat-out run: full traction, held on the envelope, braking for the stop.
+  physics::SimulationResult min_time_run() const;
+  physics::SimulationResult simulate(const physics::ControlProgram& program) const;
+  double energy_cost_J(const physics::SimulationResult& sim) const;
+
+  const physics::Train& train() const { return train_; }
+  const physics::Route& route() const { return route_; }
+  const physics::Motion& motion() const { return motion_; }
+  const StageGrid& grid() const { return grid_; }
+  const EngineOptions& options() const { return options_; }
+  double build_wall_s() const { return build_wall_s_; }
+
+ private:
+  physics::Train train_;
+  physics::Route route_;
+  EngineOptions options_;
+  physics::SpeedEnvelope envelope_;
+  physics::Motion motion_;
+  StageGrid grid_;
+  std::unique_ptr<TransitionTable> table_;
+  mutable ValueFunction value_;
+  double build_wall_s_ = 0.0;
+};
+
+}  // namespace ecorail::dp
