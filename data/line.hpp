@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ecorail::data {
@@ -14,6 +15,7 @@ namespace ecorail::data {
 struct Station {
   std::string name;
   double km_post_m = 0.0;
+  int source_row = 0;  // row in the file it came from, for error messages
 };
 
 struct IntervalRow {
@@ -29,7 +31,7 @@ struct Line {
   std::string gradients_file;
   std::string limits_file;
   std::string curves_file;
-  std::vector<Station> stations;     // in file order
+  std::vector<Station> stations;       // in file order
   std::vector<IntervalRow> gradients;  // sorted by start
   std::vector<IntervalRow> limits;
   std::vector<IntervalRow> curves;
@@ -38,5 +40,8 @@ struct Line {
   // A stable 64-bit checksum of the content (FNV-1a over a canonical text form).
   std::uint64_t checksum() const;
 };
+
+// FNV-1a, 64 bits: the hash behind Line::checksum and train_checksum.
+std::uint64_t fnv1a64(std::string_view text);
 
 }  // namespace ecorail::data

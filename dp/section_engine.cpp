@@ -4,10 +4,6 @@
 
 namespace ecorail::dp {
 
-namespace {
-physics::StepSettings dp_step(const GridSpec& grid) { return {grid.substep_m, 2}; }
-}  // namespace
-
 SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
                              const EngineOptions& options)
     : train_(train),
@@ -18,7 +14,7 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
       grid_(envelope_, route_.length_m(), options.grid) {
   const auto t0 = std::chrono::steady_clock::now();
   table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective,
-                                             dp_step(options_.grid));
+                                             dp_step());
   build_wall_s_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -34,11 +30,17 @@ double SectionEngine::energy_cost_J(const physics::SimulationResult& sim) const 
                            sim.energy.brake_work_J);
 }
 
+ValueFunction SectionEngine::sweep(double lambda) const {
+  ValueFunction value;
+  backward_sweep(grid_, *table_, lambda, value);
+  return value;
+}
+
 LambdaRun SectionEngine::run(double lambda) const {
   backward_sweep(grid_, *table_, lambda, value_);
   ExtractionSettings settings;
   settings.decision_step_m = options_.decision_step_m;
-  settings.dp_step = dp_step(options_.grid);
+  settings.dp_step = dp_step();
   LambdaRun out;
   out.lambda = lambda;
   out.program = extract_program(motion_, grid_, value_, options_.objective, settings);

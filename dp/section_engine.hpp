@@ -40,8 +40,15 @@ class SectionEngine {
   SectionEngine& operator=(const SectionEngine&) = delete;
 
   LambdaRun run(double lambda) const;
-  // Value function of the last run (for policy tables and diagnostics).
+  // Value function of the last run (for diagnostics).
   const ValueFunction& value() const { return value_; }
+  // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
+  // policy tables.
+  ValueFunction sweep(double lambda) const;
+  const TransitionTable& transitions() const { return *table_; }
+  const physics::SpeedEnvelope& envelope() const { return envelope_; }
+  // The integration settings of the DP transitions (to score controls consistently).
+  physics::StepSettings dp_step() const { return {options_.grid.substep_m, 2}; }
   // Flat-out run: full traction, held on the envelope, braking for the stop.
   physics::SimulationResult min_time_run() const;
   physics::SimulationResult simulate(const physics::ControlProgram& program) const;

@@ -26,13 +26,14 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     while (next_event != events.end() && *next_event <= s + 1e-9) ++next_event;
     double next = std::min(length, s + opt.step_m);
     if (next_event != events.end()) next = std::min(next, *next_event);
+    if (length - next < 1e-6) next = length;  // no sliver step at the end
     const double v0 = speed_from_e(e);
     const Control c = law(s, v0);
     const Substep sub = motion.substep(s, e, next - s, c, opt.rk_order);
     out.energy.add(sub.traction_work_J, sub.brake_work_J, train.traction_efficiency,
                    train.regen_efficiency);
     t += sub.time_s;
-    s += sub.length_m;
+    s = sub.stopped ? s + sub.length_m : next;  // exact positions: no drift over many steps
     e = sub.e_end;
     const double v1 = speed_from_e(e);
     const double accel = sub.time_s > 0.0 ? (v1 - v0) / sub.time_s : 0.0;

@@ -1,0 +1,88 @@
+// `ecorail solve`: the energy-optimal run of one section for a running time.
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "cli/output_options.hpp"
+#include "cli/problem_options.hpp"
+#include "data/input_error.hpp"
+#include "dp/section_solve.hpp"
+#include "output/run_json.hpp"
+#include "physics/units.hpp"
+
+namespace ecorail::cli {
+
+namespace {
+
+struct SolveArgs {
+  ProblemOptions problem;
+  OutputOptions outputs;
+  double time_s = 0.0;
+  bool full_report = false;
+};
+
+void print_regimes(const std::vector<dp::RegimeSpan>& spans) {
+  std::printf("  %-17s %9s %9s %9s %9s %8s %8s\n", "regime", "from_m", "to_m", "v0_kmh",
+              "v1_kmh", "t0_s", "t1_s");
+  for (const auto& r : spans) {
+    std::printf("  %-17s %9.2f %9.2f %9.2f %9.2f %8.2f %8.2f\n",
+                std::string(physics::regime_name(r.regime)).c_str(), r.start_m, r.end_m,
+                units::ms_to_kmh(r.start_speed_ms), units::ms_to_kmh(r.end_speed_ms),
+                r.start_time_s, r.end_time_s);
+  }
+}
+
+output::SummaryRows summary_rows(const dp::SectionSolveSummary& s) {
+  auto num = [](double v) { return std::to_string(v); };
+  return {{"section", s.from + " -> " + s.to},
+          {"distance_m", num(s.distance_m)},
+          {"target_time_s", num(s.target_time_s)},
+          {"running_time_s", num(s.running_time_s)},
+          {"traction_energy_kJ", num(s.traction_energy_kJ)},
+          {"regen_energy_kJ", num(s.regen_energy_kJ)},
+          {"net_energy_kJ", num(s.net_energy_kJ)},
+          {"stop_error_m", num(s.stop_error_m)},
+          {"max_overspeed_kmh", num(s.max_overspeed_kmh)},
+          {"lambda_kJ_per_s", num(s.lambda_J_per_s / 1000.0)},
+          {"grid", "ds " + num(s.grid.ds_m) + " m, dv " + num(s.grid.dv_kmh) + " km/h"}};
+}
+
+void run_solve(const SolveArgs& a) {
+  if (!(a.time_s > 0.0)) {
+    throw data::InputError("command line", 0, "--time", "a running time in seconds > 0");
+  }
+  check_output_targets(a.outputs);
+  const Problem p = load_problem(a.problem);
+  dp::SectionSolveOptions options;
+  options.engine = engine_options(a.problem);
+  dp::SectionSolution solution;
+  try {
+    solution = dp::solve_section(p.train, p.route, a.time_s, options);
+  } catch (const dp::InfeasibleTimeError& e) {
+    throw data::InputError("command line", 0, "--time", e.what());
+  }
+  const auto& s = solution.summary;
+  std::cout << (a.full_report ? s.FullReport() : s.BriefReport());
+  print_regimes(solution.regimes);
+  output::Timeline timeline;
+  output::append_section(timeline, solution.run.sim, p.route, 0);
+  char title[256];
+  std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
+                s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
+  write_outputs(a.outputs, output::section_solution_json(solution), timeline, title,
+                summary_rows(s));
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app) {
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* cmd = app.add_subcommand("solve", "energy-optimal run for a running time");
+  add_problem_options(cmd, args->problem);
+  cmd->add_option("--time", args->time_s, "running time in s (dwells excluded)")->required();
+  cmd->add_flag("--full-report", args->full_report, "print the full solver report");
+  add_output_options(cmd, args->outputs);
+  cmd->callback([args] { run_solve(*args); });
+}
+
+}  // namespace ecorail::cli

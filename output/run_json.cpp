@@ -1,0 +1,60 @@
+#include "output/run_json.hpp"
+
+#include "physics/units.hpp"
+
+namespace ecorail::output {
+
+nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& r : spans) {
+    list.push_back({{"regime", physics::regime_name(r.regime)},
+                    {"start_m", r.start_m},
+                    {"end_m", r.end_m},
+                    {"start_speed_kmh", units::ms_to_kmh(r.start_speed_ms)},
+                    {"end_speed_kmh", units::ms_to_kmh(r.end_speed_ms)},
+                    {"start_time_s", r.start_time_s},
+                    {"end_time_s", r.end_time_s}});
+  }
+  return list;
+}
+
+nlohmann::json run_json(const physics::SimulationResult& sim) {
+  return {{"traction_energy_kJ", units::J_to_kJ(sim.energy.traction_work_J)},
+          {"braking_energy_kJ", units::J_to_kJ(sim.energy.brake_work_J)},
+          {"regen_energy_kJ", units::J_to_kJ(sim.energy.regen_J)},
+          {"traction_input_energy_kJ", units::J_to_kJ(sim.energy.traction_input_J)},
+          {"net_energy_kJ", units::J_to_kJ(sim.energy.net_J())},
+          {"running_time_s", sim.running_time_s},
+          {"stop_error_m", sim.stop_error_m},
+          {"max_overspeed_kmh", units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms))},
+          {"regimes", regimes_json(dp::regime_spans(sim.trace))}};
+}
+
+nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
+  const dp::SectionSolveSummary& s = solution.summary;
+  nlohmann::json j = run_json(solution.run.sim);
+  j["regimes"] = regimes_json(solution.regimes);
+  j["from"] = s.from;
+  j["to"] = s.to;
+  j["distance_m"] = s.distance_m;
+  j["target_time_s"] = s.target_time_s;
+  j["min_running_time_s"] = s.min_time_s;
+  j["lambda"] = s.lambda_J_per_s / 1000.0;
+  j["lambda_unit"] = "kJ/s";
+  j["objective"] = s.objective == dp::Objective::Net ? "net" : "traction";
+  j["converged"] = s.converged;
+  j["warnings"] = s.warnings;
+  j["grid"] = {{"ds_m", s.grid.ds_m},
+               {"dv_kmh", s.grid.dv_kmh},
+               {"substep_m", s.grid.substep_m},
+               {"stages", s.stages},
+               {"nodes", s.nodes}};
+  j["search"] = {{"lambda_evaluations", s.lambda_evaluations},
+                 {"trim_simulations", s.trim_simulations},
+                 {"trim_shift_m", s.trim_shift_m}};
+  j["solve_wall_s"] = s.total_wall_s;
+  j["threads"] = s.threads;
+  return j;
+}
+
+}  // namespace ecorail::output

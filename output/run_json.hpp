@@ -1,0 +1,20 @@
+// JSON reports of runs: the keys are a contract with users and reviewers (see docs/outputs.md);
+// new keys may be added, none renamed. All figures come from the re-simulated run.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "dp/regimes.hpp"
+#include "dp/section_solve.hpp"
+#include "physics/simulator.hpp"
+
+namespace ecorail::output {
+
+nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans);
+// Energies, time, stop error and overspeed of a re-simulated run.
+nlohmann::json run_json(const physics::SimulationResult& sim);
+// The full report of a single-section solve.
+nlohmann::json section_solution_json(const dp::SectionSolution& solution);
+
+}  // namespace ecorail::output

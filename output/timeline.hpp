@@ -1,0 +1,42 @@
+// Timeline: a run laid out for reporting. Each point carries time and distance from the start
+// of the run (a journey's sections and dwells follow one another), the state, the force, the
+// kilometre post and the track data at that point. per_second() samples a timeline at every
+// whole second, as in the published tables, plus the final instant.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "physics/route.hpp"
+#include "physics/simulator.hpp"
+
+namespace ecorail::output {
+
+struct TimelinePoint {
+  double t_s = 0.0;
+  double s_m = 0.0;  // distance from the start of the run
+  double v_ms = 0.0;
+  double accel_m_s2 = 0.0;
+  double force_N = 0.0;  // traction positive, braking negative
+  double km_post_m = 0.0;
+  double gradient_permille = 0.0;  // in the travel direction
+  double speed_limit_ms = 0.0;
+  physics::Regime regime = physics::Regime::Coast;
+  bool dwelling = false;
+  int section = 0;
+};
+
+using Timeline = std::vector<TimelinePoint>;
+
+// Appends a re-simulated section run; time and distance continue from the timeline's end.
+void append_section(Timeline& timeline, const physics::SimulationResult& sim,
+                    const physics::Route& route, int section);
+// Appends a dwell at the last point of the timeline.
+void append_dwell(Timeline& timeline, double dwell_s);
+// Samples at t = 1, 2, ... s and at the final instant, interpolating linearly in time.
+Timeline per_second(const Timeline& timeline);
+
+// "hh:mm:ss", with hundredths when t is not a whole second.
+std::string format_hms(double t_s);
+
+}  // namespace ecorail::output
