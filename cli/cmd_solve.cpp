@@ -59,7 +59,12 @@ void run_solve(const SolveArgs& a) {
   try {
     solution = dp::solve_section(p.train, p.route, a.time_s, options);
   } catch (const dp::InfeasibleTimeError& e) {
-    throw data::InputError("command line", 0, "--time", e.what());
+    char expected[200];
+    std::snprintf(expected, sizeof expected,
+                  "at least the minimum running time of %.2f s for %s -> %s (flat-out run); got "
+                  "%.2f s",
+                  e.minimum_s(), p.route.from_name().c_str(), p.route.to_name().c_str(), a.time_s);
+    throw data::InputError("command line", 0, "--time", expected);
   }
   const auto& s = solution.summary;
   std::cout << (a.full_report ? s.FullReport() : s.BriefReport());

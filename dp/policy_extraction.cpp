@@ -90,7 +90,20 @@ physics::ControlProgram extract_program(const physics::Motion& motion, const Sta
     s = next;
     e = adv.e_end;
   }
-  return program;
+  return simplify_program(program, settings.min_entry_m);
+}
+
+physics::ControlProgram simplify_program(const physics::ControlProgram& program,
+                                         double min_entry_m) {
+  physics::ControlProgram out;
+  for (std::size_t k = 0; k < program.size(); ++k) {
+    const bool last = k + 1 == program.size();
+    const bool sliver = k > 0 && !last && program[k + 1].from_m - program[k].from_m < min_entry_m;
+    if (sliver) continue;  // the control before it simply goes on
+    if (!out.empty() && out.back().control == program[k].control) continue;
+    out.push_back(program[k]);
+  }
+  return out;
 }
 
 }  // namespace ecorail::dp

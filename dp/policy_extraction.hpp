@@ -20,8 +20,16 @@ struct ExtractionSettings {
   // Relative margin by which a challenger must beat the incumbent control (hysteresis against
   // chattering between controls whose look-ahead costs are equal to rounding).
   double tie_tolerance = 1e-7;
+  // Program entries shorter than this are dropped (the control before them goes on): they are
+  // integration-level dithering between nearly equal controls, and they would pin the
+  // neighbouring switch points that the running-time trim moves.
+  double min_entry_m = 1.0;
   physics::StepSettings dp_step;  // the same integration as the transition table
 };
+
+// Drops entries shorter than min_entry_m and merges repeated controls.
+physics::ControlProgram simplify_program(const physics::ControlProgram& program,
+                                         double min_entry_m);
 
 physics::ControlProgram extract_program(const physics::Motion& motion, const StageGrid& grid,
                                         const ValueFunction& value, Objective objective,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace ecorail::dp {
 
@@ -69,7 +70,8 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
 
   // Illinois regula falsi on the bracket.
   int side = 0;
-  while (out.iterations < options.max_iterations && x_hi - x_lo > 1e-13) {
+  // A bracket narrower than 0.01 % of lambda straddles a jump of T(lambda): the trim bridges it.
+  while (out.iterations < options.max_iterations && x_hi - x_lo > 1e-4) {
     double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
     if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
     const double fm = evaluate(xm);
@@ -94,12 +96,15 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
   LambdaRun& run = result.run;
   auto error = [&](const physics::SimulationResult& sim) { return sim.running_time_s - target; };
   if (std::abs(error(run.sim)) <= tolerance_s) return true;
-  const physics::ControlProgram& program = run.program;
+  const physics::ControlProgram program = run.program;
   const double length = engine.route().length_m();
-  // Candidate switch points: the ends of full-traction phases. Pick the one whose shift moves
-  // the running time most (a switch held on the speed envelope barely moves it).
-  std::size_t best = 0;
-  double best_slope = 0.0;
+  // Candidate switch points: the ends of full-traction phases, most time-sensitive first (a
+  // switch held on the speed envelope barely moves the running time).
+  struct Candidate {
+    std::size_t index;
+    double slope;  // d(time)/d(position), negative: later switch, faster run
+  };
+  std::vector<Candidate> candidates;
   constexpr double kProbe_m = 0.5;
   for (std::size_t k = 1; k < program.size(); ++k) {
     if (program[k - 1].control != physics::Control::MaxTraction) continue;
@@ -109,35 +114,90 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     probe[k].from_m += kProbe_m;
     const double slope = (error(engine.simulate(probe)) - error(run.sim)) / kProbe_m;
     ++result.trim_iterations;
-    if (slope < best_slope) {
-      best_slope = slope;
-      best = k;
+    if (slope < 0.0) candidates.push_back({k, slope});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.slope < b.slope; });
+
+  for (const Candidate& cand : candidates) {
+    const std::size_t k = cand.index;
+    // Bracket the root inside the switch's neighbours: f falls as the switch moves later.
+    const double x0 = program[k].from_m;
+    double lo = program[k - 1].from_m + 1e-6;
+    double hi = (k + 1 < program.size() ? program[k + 1].from_m : length) - 1e-6;
+    auto evaluate = [&](double x, physics::ControlProgram* trial_out,
+                        physics::SimulationResult* sim_out) {
+      physics::ControlProgram trial = program;
+      trial[k].from_m = x;
+      physics::SimulationResult sim = engine.simulate(trial);
+      ++result.trim_iterations;
+      const double f = error(sim);
+      *trial_out = std::move(trial);
+      *sim_out = std::move(sim);
+      return f;
+    };
+    physics::ControlProgram trial;
+    physics::SimulationResult sim;
+    double f0 = error(run.sim);
+    // Narrow the bracket to the side of x0 that holds the root, starting from the secant guess.
+    double step = std::abs(f0 / cand.slope);
+    double f_lo = NAN, f_hi = NAN;
+    if (f0 > 0.0) {  // too slow: move later
+      lo = x0;
+      f_lo = f0;
+      for (double x = x0 + 2.0 * step; x < hi; x = x0 + (x - x0) * 2.0) {
+        const double f = evaluate(x, &trial, &sim);
+        if (f <= 0.0) {
+          hi = x;
+          f_hi = f;
+          break;
+        }
+        lo = x;
+        f_lo = f;
+      }
+    } else {  // too fast: move earlier
+      hi = x0;
+      f_hi = f0;
+      for (double x = x0 - 2.0 * step; x > lo; x = x0 - (x0 - x) * 2.0) {
+        const double f = evaluate(x, &trial, &sim);
+        if (f >= 0.0) {
+          lo = x;
+          f_lo = f;
+          break;
+        }
+        hi = x;
+        f_hi = f;
+      }
+    }
+    if (std::isnan(f_lo)) f_lo = evaluate(lo, &trial, &sim);
+    if (std::isnan(f_hi)) f_hi = evaluate(hi, &trial, &sim);
+    if (!(f_lo >= 0.0 && f_hi <= 0.0)) continue;  // this switch cannot reach the target
+    // Illinois regula falsi on [lo, hi].
+    int side = 0;
+    for (int it = 0; it < 40; ++it) {
+      double x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+      const double f = evaluate(x, &trial, &sim);
+      if (std::abs(f) <= tolerance_s) {
+        run.program = std::move(trial);
+        run.sim = std::move(sim);
+        run.cost_J = engine.energy_cost_J(run.sim);
+        result.trim_shift_m = x - x0;
+        return true;
+      }
+      if (f > 0.0) {
+        lo = x, f_lo = f;
+        if (side == -1) f_hi *= 0.5;
+        side = -1;
+      } else {
+        hi = x, f_hi = f;
+        if (side == 1) f_lo *= 0.5;
+        side = 1;
+      }
+      if (hi - lo < 1e-9) break;
     }
   }
-  if (best == 0) return false;
-  // Secant on the switch position, kept inside its neighbours.
-  const double lo = program[best - 1].from_m + 1e-6;
-  const double hi = (best + 1 < program.size() ? program[best + 1].from_m : length) - 1e-6;
-  const double x0 = program[best].from_m;
-  double x = x0, f = error(run.sim), slope = best_slope;
-  for (int it = 0; it < 12; ++it) {
-    const double x_new = std::clamp(x - f / slope, lo, hi);
-    physics::ControlProgram trial = run.program;
-    trial[best].from_m = x_new;
-    physics::SimulationResult sim = engine.simulate(trial);
-    ++result.trim_iterations;
-    const double f_new = error(sim);
-    if (x_new != x && f_new != f) slope = (f_new - f) / (x_new - x);
-    x = x_new;
-    f = f_new;
-    run.program = std::move(trial);
-    run.sim = std::move(sim);
-    run.cost_J = engine.energy_cost_J(run.sim);
-    if (std::abs(f) <= tolerance_s) break;
-    if (!(slope < 0.0)) break;
-  }
-  result.trim_shift_m = x - x0;
-  return std::abs(f) <= tolerance_s;
+  return false;
 }
 
 }  // namespace ecorail::dp

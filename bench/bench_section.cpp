@@ -1,0 +1,61 @@
+// Speed of the single-section engine on A6 -> A7 of the reference line at the default grid:
+// one backward sweep, the lambda-independent transition table, and the whole solve for 110 s
+// (engine build, lambda search, trim and fine re-simulation), each with 1 and 2 threads.
+// Run: build/bench/bench_section --benchmark_min_time=1
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include "data/line_loader.hpp"
+#include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "dp/section_solve.hpp"
+
+namespace {
+
+using namespace ecorail;
+
+struct Problem {
+  physics::Train train = data::default_train();
+  physics::Route route = data::build_route(data::default_line(), "A6", "A7", train);
+};
+
+const Problem& problem() {
+  static const Problem p;
+  return p;
+}
+
+void BM_BackwardSweep(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  const dp::SectionEngine engine(problem().train, problem().route, {});
+  dp::ValueFunction value;
+  for (auto _ : state) {
+    dp::backward_sweep(engine.grid(), engine.transitions(), 7.1e5, value);
+    benchmark::DoNotOptimize(value.cost_to_go.data());
+  }
+  state.counters["nodes"] = engine.grid().total_nodes();
+}
+BENCHMARK(BM_BackwardSweep)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_TransitionTable(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const dp::SectionEngine engine(problem().train, problem().route, {});
+    benchmark::DoNotOptimize(&engine);
+  }
+}
+BENCHMARK(BM_TransitionTable)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_SolveA6A7_110s(benchmark::State& state) {
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  double energy = 0.0;
+  for (auto _ : state) {
+    const auto sol = dp::solve_section(problem().train, problem().route, 110.0, {});
+    energy = sol.run.sim.energy.traction_work_J;
+  }
+  state.counters["traction_kJ"] = energy / 1000.0;
+}
+BENCHMARK(BM_SolveA6A7_110s)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
