@@ -1,6 +1,93 @@
-// Placeholder until the fitting room lands: `ecorail fit-envelope`.
+// `ecorail fit-envelope`: fits the piecewise and the constant-power forms of a traction or
+// braking envelope to (speed, force) points, prints both with standard errors and information
+// criteria, and writes the chosen form into a train file the engine reads (docs/calibration.md).
+#include <iostream>
+#include <memory>
+#include <string>
+
 #include "cli/commands.hpp"
+#include "data/atomic_file.hpp"
+#include "data/input_error.hpp"
+#include "data/train_io.hpp"
+#include "fitting/envelope_fit.hpp"
+#include "fitting/fit_json.hpp"
+#include "physics/units.hpp"
 
 namespace ecorail::cli {
-void add_fit_envelope_command(CLI::App&) {}
+
+namespace {
+
+struct FitEnvelopeArgs {
+  std::string points;
+  std::string kind;
+  std::string out;
+  std::string train;
+  std::string json;
+  std::string form = "best";
+  int degree = 0;  // 0: 3 for traction, 2 for braking
+};
+
+void run_fit_envelope(const FitEnvelopeArgs& a) {
+  using namespace fitting;
+  const EnvelopeKind kind = a.kind == "braking" ? EnvelopeKind::Braking : EnvelopeKind::Traction;
+  const physics::Train base = a.train.empty() ? data::default_train() : data::load_train(a.train);
+  const std::vector<EnvelopePoint> points = read_envelope_points(a.points);
+  EnvelopeFitOptions options;
+  options.degree = a.degree > 0 ? a.degree : (kind == EnvelopeKind::Traction ? 3 : 2);
+  options.label = a.points;
+  const EnvelopeFitResult result = fit_envelope(points, options);
+  const EnvelopeForm written = a.form == "piecewise" ? EnvelopeForm::Piecewise
+                               : a.form == "power"   ? EnvelopeForm::ConstantPower
+                                                     : result.better;
+  std::cout << result.report(kind);
+  std::cout << "form written: " << form_name(written) << "\n";
+
+  if (!a.out.empty()) {
+    physics::Train t = base;
+    double top_kmh = units::ms_to_kmh(base.max_speed_ms);
+    for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
+    const physics::ForceEnvelope env = to_force_envelope(result.form(written), top_kmh);
+    if (kind == EnvelopeKind::Traction) {
+      t.traction = env;
+    } else {
+      t.braking = env;
+    }
+    data::save_train(t, a.out);
+    std::cout << "wrote " << a.out << "\n";
+  }
+  if (!a.json.empty()) {
+    const nlohmann::json j = envelope_fit_to_json(result, kind, written);
+    data::write_atomically(a.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+    std::cout << "wrote " << a.json << "\n";
+  }
+}
+
+}  // namespace
+
+void add_fit_envelope_command(CLI::App& app) {
+  auto args = std::make_shared<FitEnvelopeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "fit-envelope",
+      "Fit a traction or braking envelope (piecewise and constant-power forms) to (speed, force) "
+      "points and write it into a train file");
+  cmd->add_option("--points", args->points, "CSV of points with columns speed_kmh, force_kN")
+      ->required();
+  cmd->add_option("--kind", args->kind, "which envelope the points describe: traction or braking")
+      ->required()
+      ->check(CLI::IsMember({"traction", "braking"}));
+  cmd->add_option("--out", args->out,
+                  "train file to write: the base train with the fitted envelope (TOML)");
+  cmd->add_option("--train", args->train, "base train (default: the reference train)");
+  cmd->add_option("--json", args->json,
+                  "write the fit as JSON (breakpoint_kmh, coefficients, standard errors, "
+                  "residuals)");
+  cmd->add_option("--degree", args->degree,
+                  "degree of the polynomial above the breakpoint (default 3 for traction, 2 for "
+                  "braking)");
+  cmd->add_option("--form", args->form,
+                  "form written: best (lower BIC), piecewise or power (default best)")
+      ->check(CLI::IsMember({"best", "piecewise", "power"}));
+  cmd->callback([args] { run_fit_envelope(*args); });
+}
+
 }  // namespace ecorail::cli

@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cli/journey_solve.hpp"
+#include "data/route_builder.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "data/input_error.hpp"
@@ -17,6 +19,7 @@ namespace {
 struct SolveArgs {
   ProblemOptions problem;
   OutputOptions outputs;
+  JourneyArgs journey;
   double time_s = 0.0;
   bool full_report = false;
 };
@@ -52,6 +55,16 @@ void run_solve(const SolveArgs& a) {
     throw data::InputError("command line", 0, "--time", "a running time in seconds > 0");
   }
   check_output_targets(a.outputs);
+  {
+    ProblemOptions line_only = a.problem;
+    line_only.from.clear();
+    const std::vector<std::string> stops =
+        data::stops_between(load_problem(line_only).line, a.problem.from, a.problem.to);
+    if (stops.size() > 2) {
+      run_journey(a.problem, a.journey, a.outputs, a.time_s, a.full_report, stops);
+      return;
+    }
+  }
   const Problem p = load_problem(a.problem);
   dp::SectionSolveOptions options;
   options.engine = engine_options(a.problem);
@@ -86,6 +99,19 @@ void add_solve_command(CLI::App& app) {
   add_problem_options(cmd, args->problem);
   cmd->add_option("--time", args->time_s, "running time in s (dwells excluded)")->required();
   cmd->add_flag("--full-report", args->full_report, "print the full solver report");
+  cmd->add_option("--dwell", args->journey.dwells,
+                  "dwell at intermediate stops: STATION=SECONDS, or SECONDS for every stop "
+                  "not named (journeys only)");
+  cmd->add_option("--split", args->journey.split,
+                  "optimal: one lambda for all sections; proportional: time in proportion to "
+                  "distance")
+      ->check(CLI::IsMember({"optimal", "proportional"}))
+      ->capture_default_str();
+  cmd->add_option("--marginals", args->journey.marginals,
+                  "measure each section's marginal energy per second (+-0.5 s re-solves): "
+                  "on, off, auto (on up to 4 sections)")
+      ->check(CLI::IsMember({"on", "off", "auto"}))
+      ->capture_default_str();
   add_output_options(cmd, args->outputs);
   cmd->callback([args] { run_solve(*args); });
 }

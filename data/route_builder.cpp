@@ -172,4 +172,23 @@ physics::Route build_route(const Line& line, const std::string& from, const std:
   return physics::Route(std::move(segments), p0, dir, from, to);
 }
 
+std::vector<std::string> stops_between(const Line& line, const std::string& from,
+                                       const std::string& to) {
+  const Station& a = find_or_throw(line, from);
+  const Station& b = find_or_throw(line, to);
+  if (&a == &b) {
+    throw InputError(line.stations_file, 0, "station",
+                     "two different stations; got '" + from + "' twice");
+  }
+  const auto ia = static_cast<std::size_t>(&a - line.stations.data());
+  const auto ib = static_cast<std::size_t>(&b - line.stations.data());
+  std::vector<std::string> stops;
+  if (ia < ib) {
+    for (std::size_t i = ia; i <= ib; ++i) stops.push_back(line.stations[i].name);
+  } else {
+    for (std::size_t i = ia + 1; i-- > ib;) stops.push_back(line.stations[i].name);
+  }
+  return stops;
+}
+
 }  // namespace ecorail::data

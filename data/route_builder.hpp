@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "data/line.hpp"
 #include "physics/route.hpp"
@@ -15,5 +16,10 @@ namespace ecorail::data {
 
 physics::Route build_route(const Line& line, const std::string& from, const std::string& to,
                            const physics::Train& train);
+
+// The stops of a run from `from` to `to` stopping at every station between them, both ends
+// included, in the order of travel (the stations file's order, or its reverse).
+std::vector<std::string> stops_between(const Line& line, const std::string& from,
+                                       const std::string& to);
 
 }  // namespace ecorail::data

@@ -27,68 +27,75 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   if (target < t_min - options.tolerance_s) throw InfeasibleTimeError(target, t_min);
 
   TimeSearchResult out;
-  auto finish = [&](TimeSearchResult& r) -> TimeSearchResult& {
-    if (options.trim) {
-      r.converged = trim_to_time(engine, target, options.tolerance_s, r);
-    } else {
-      r.converged = std::abs(r.run.sim.running_time_s - target) <= options.tolerance_s;
-    }
-    return r;
-  };
-  const double coarse = options.trim ? options.lambda_tolerance_s : options.tolerance_s;
   bool have_best = false;
+  auto error_of_best = [&] { return std::abs(out.run.sim.running_time_s - target); };
   auto evaluate = [&](double x) {
     LambdaRun run = engine.run(std::exp(x));
     ++out.iterations;
     const double f = run.sim.running_time_s - target;
-    if (!have_best || std::abs(f) < std::abs(out.run.sim.running_time_s - target)) {
-      out.run = run;
+    if (!have_best || std::abs(f) < error_of_best()) {
+      out.run = std::move(run);
       have_best = true;
     }
     return f;
   };
+  auto trimmed = [&] {
+    if (!options.trim) return false;
+    TimeSearchResult attempt = out;
+    if (!trim_to_time(engine, target, options.tolerance_s, attempt)) {
+      out.trim_iterations = attempt.trim_iterations;
+      return false;
+    }
+    out = std::move(attempt);
+    return true;
+  };
 
   // Bracket: f(lo) > 0 (too slow), f(hi) < 0 (too fast), in x = log(lambda).
-  double x = std::log(options.lambda_guess);
-  double f = evaluate(x);
-  double x_lo = x, f_lo = f, x_hi = x, f_hi = f;
-  const double step = std::log(4.0);
-  while (f_lo < 0.0 && out.iterations < options.max_iterations && x_lo > std::log(1.0)) {
-    x_hi = x_lo;
-    f_hi = f_lo;
+  double x_lo = std::log(options.lambda_guess);
+  double f_lo = evaluate(x_lo);
+  double x_hi = x_lo, f_hi = f_lo;
+  const double step = std::log(options.bracket_factor);
+  while (f_lo < 0.0 && out.iterations < options.max_iterations && x_lo > 0.0) {
+    x_hi = x_lo, f_hi = f_lo;
     x_lo -= step;
     f_lo = evaluate(x_lo);
   }
   while (f_hi > 0.0 && out.iterations < options.max_iterations && x_hi < std::log(1e12)) {
-    x_lo = x_hi;
-    f_lo = f_hi;
+    x_lo = x_hi, f_lo = f_hi;
     x_hi += step;
     f_hi = evaluate(x_hi);
   }
-  if (std::abs(out.run.sim.running_time_s - target) <= coarse) return finish(out);
-  if (f_lo < 0.0 || f_hi > 0.0) return finish(out);  // could not bracket
+  const bool bracketed = f_lo >= 0.0 && f_hi <= 0.0;
 
-  // Illinois regula falsi on the bracket.
+  // Illinois regula falsi on log(lambda): first to the coarse tolerance, where the trim takes
+  // over; if the trim cannot close the gap, on to the fine tolerance without it. A bracket
+  // narrower than 0.01 % of lambda straddles a jump of T(lambda) and ends a phase.
+  const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,
+                           options.tolerance_s};
   int side = 0;
-  // A bracket narrower than 0.01 % of lambda straddles a jump of T(lambda): the trim bridges it.
-  while (out.iterations < options.max_iterations && x_hi - x_lo > 1e-4) {
-    double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
-    if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
-    const double fm = evaluate(xm);
-    if (std::abs(fm) <= coarse) return finish(out);
-    if (fm > 0.0) {
-      x_lo = xm;
-      f_lo = fm;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
-    } else {
-      x_hi = xm;
-      f_hi = fm;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
+  for (double tolerance : phases) {
+    while (bracketed && error_of_best() > tolerance &&
+           out.iterations < options.max_iterations && x_hi - x_lo > 1e-4) {
+      double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
+      if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
+      const double fm = evaluate(xm);
+      if (fm > 0.0) {
+        x_lo = xm, f_lo = fm;
+        if (side == -1) f_hi *= 0.5;
+        side = -1;
+      } else {
+        x_hi = xm, f_hi = fm;
+        if (side == 1) f_lo *= 0.5;
+        side = 1;
+      }
+    }
+    if (error_of_best() <= options.tolerance_s || trimmed()) {
+      out.converged = true;
+      return out;
     }
   }
-  return finish(out);
+  out.converged = error_of_best() <= options.tolerance_s;
+  return out;
 }
 
 bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s,

@@ -33,6 +33,7 @@ struct TimeSearchOptions {
   bool trim = true;
   int max_iterations = 60;
   double lambda_guess = 3e5;  // J/s; only a starting point
+  double bracket_factor = 4.0;  // lambda is multiplied or divided by this while bracketing
 };
 
 struct TimeSearchResult {

@@ -1,0 +1,172 @@
+// `ecorail frontier`: energy-time frontiers of one section or of every section of a line, with
+// a cache keyed by line, train, grid and range so the fleet work can reuse them for free.
+#include <omp.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include "cli/commands.hpp"
+#include "cli/problem_options.hpp"
+#include "data/atomic_file.hpp"
+#include "data/input_error.hpp"
+#include "data/line.hpp"
+#include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "output/frontier_io.hpp"
+#include "physics/units.hpp"
+
+namespace ecorail::cli {
+
+namespace {
+
+struct FrontierArgs {
+  ProblemOptions problem;
+  double t_min = 0.0, t_max = 0.0, step = 1.0;
+  bool all = false;
+  std::string json, csv, plot;
+  std::string cache_dir;
+  bool no_cache = false;
+};
+
+// Bumped whenever the engine's results change, so stale cache entries are never read.
+constexpr const char* kCacheVersion = "ecorail-frontier-1";
+
+std::filesystem::path default_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    return std::filesystem::path(xdg) / "ecorail" / "frontiers";
+  }
+  if (const char* home = std::getenv("HOME"); home && *home) {
+    return std::filesystem::path(home) / ".cache" / "ecorail" / "frontiers";
+  }
+  return std::filesystem::temp_directory_path() / "ecorail-frontiers";
+}
+
+std::string cache_key(const Problem& p, const FrontierArgs& a, const std::string& from,
+                      const std::string& to) {
+  char text[512];
+  std::snprintf(text, sizeof text, "%s|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g",
+                kCacheVersion, static_cast<unsigned long long>(p.line.checksum()),
+                static_cast<unsigned long long>(data::train_checksum(p.train)), from.c_str(),
+                to.c_str(), a.problem.ds_m, a.problem.dv_kmh, a.problem.objective.c_str(),
+                a.t_min, a.t_max, a.step);
+  char name[64];
+  std::snprintf(name, sizeof name, "%016llx.json",
+                static_cast<unsigned long long>(data::fnv1a64(text)));
+  return name;
+}
+
+output::LabelledFrontier frontier_for(const Problem& p, const FrontierArgs& a,
+                                      const std::string& from, const std::string& to,
+                                      const std::filesystem::path& cache) {
+  const auto file = cache / cache_key(p, a, from, to);
+  if (!a.no_cache && std::filesystem::exists(file)) {
+    try {
+      std::ifstream in(file);
+      return output::frontier_from_json(nlohmann::json::parse(in));
+    } catch (const std::exception&) {
+      // A damaged cache entry is recomputed and overwritten.
+    }
+  }
+  const physics::Route route = data::build_route(p.line, from, to, p.train);
+  const dp::SectionEngine engine(p.train, route, engine_options(a.problem));
+  dp::FrontierOptions options;
+  options.t_min_s = a.t_min;
+  options.t_max_s = a.t_max;
+  options.step_s = a.step;
+  output::LabelledFrontier lf{from, to, dp::compute_frontier(engine, options)};
+  if (!a.no_cache) {
+    std::error_code ec;
+    std::filesystem::create_directories(cache, ec);
+    if (!ec) {
+      try {
+        data::write_atomically(file, [&](std::ostream& out) {
+          out << output::frontier_json(lf).dump() << "\n";
+        });
+      } catch (const std::exception&) {
+        // The cache is an optimisation: failing to write it is not an error.
+      }
+    }
+  }
+  return lf;
+}
+
+void run_frontier(const FrontierArgs& a) {
+  if (!(a.step > 0.0)) throw data::InputError("command line", 0, "--step", "a step in s > 0");
+  if (a.t_max > 0.0 && a.t_max < a.t_min) {
+    throw data::InputError("command line", 0, "--tmax", "a time above --tmin");
+  }
+  if (!a.all && (a.problem.from.empty() || a.problem.to.empty())) {
+    throw data::InputError("command line", 0, "--from/--to", "a section, or --all");
+  }
+  ProblemOptions line_only = a.problem;
+  line_only.from.clear();
+  const Problem p = load_problem(line_only);
+  std::vector<std::pair<std::string, std::string>> sections;
+  if (a.all) {
+    for (std::size_t i = 0; i + 1 < p.line.stations.size(); ++i) {
+      sections.emplace_back(p.line.stations[i].name, p.line.stations[i + 1].name);
+    }
+  } else {
+    const auto stops = data::stops_between(p.line, a.problem.from, a.problem.to);
+    if (stops.size() != 2) {
+      throw data::InputError("command line", 0, "--to",
+                             "the station next to --from (a frontier is of one section); got '" +
+                                 a.problem.to + "'");
+    }
+    sections.emplace_back(a.problem.from, a.problem.to);
+  }
+  const auto cache = a.cache_dir.empty() ? default_cache_dir() : std::filesystem::path(a.cache_dir);
+  std::vector<output::LabelledFrontier> frontiers;
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const auto& [from, to] = sections[i];
+    if (sections.size() > 1) std::fprintf(stderr, "frontier %zu/%zu: %s -> %s\n", i + 1,
+                                          sections.size(), from.c_str(), to.c_str());
+    frontiers.push_back(frontier_for(p, a, from, to, cache));
+  }
+  std::printf("%-8s %-8s %10s %8s %14s %14s %8s %7s %8s\n", "from", "to", "min_time_s", "points",
+              "E(first)_kJ", "E(last)_kJ", "monotone", "convex", "wobbles");
+  for (const auto& lf : frontiers) {
+    const auto& f = lf.frontier;
+    std::printf("%-8s %-8s %10.3f %8zu %14.1f %14.1f %8s %7s %8zu\n", lf.from.c_str(),
+                lf.to.c_str(), f.min_time_s, f.points.size(),
+                units::J_to_kJ(f.points.front().cost_J), units::J_to_kJ(f.points.back().cost_J),
+                f.monotone ? "yes" : "NO", f.convex ? "yes" : "NO", f.wobbles.size());
+    for (const auto& w : f.wobbles) {
+      std::printf("  note: %s at %.1f s by %.3f kJ (grid effect; see docs/frontiers.md)\n",
+                  w.kind.c_str(), w.time_s, w.size_J / 1000.0);
+    }
+  }
+  if (!a.json.empty()) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& lf : frontiers) j.push_back(output::frontier_json(lf));
+    nlohmann::json doc = a.all ? nlohmann::json{{"frontiers", j}} : j[0];
+    doc["grid"] = {{"ds_m", a.problem.ds_m}, {"dv_kmh", a.problem.dv_kmh}};
+    data::write_atomically(a.json, [&](std::ostream& out) { out << doc.dump(2) << "\n"; });
+  }
+  if (!a.csv.empty()) output::write_frontiers_csv(a.csv, frontiers);
+  if (!a.plot.empty()) {
+    output::write_frontiers_plot_svg(a.plot, frontiers, "energy-time frontier");
+  }
+}
+
+}  // namespace
+
+void add_frontier_command(CLI::App& app) {
+  auto args = std::make_shared<FrontierArgs>();
+  CLI::App* cmd = app.add_subcommand("frontier", "energy-time frontier of a section");
+  add_problem_options(cmd, args->problem, false);
+  cmd->add_option("--tmin", args->t_min, "first running time in s (default: the minimum)");
+  cmd->add_option("--tmax", args->t_max, "last running time in s (default: minimum + 60)");
+  cmd->add_option("--step", args->step, "time step in s")->capture_default_str();
+  cmd->add_flag("--all", args->all, "every section of the line");
+  cmd->add_option("--json", args->json, "write the frontier(s) as JSON");
+  cmd->add_option("--csv", args->csv, "write the frontier(s) as CSV");
+  cmd->add_option("--plot", args->plot, "write an energy-time plot as SVG");
+  cmd->add_option("--cache-dir", args->cache_dir,
+                  "cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
+  cmd->add_flag("--no-cache", args->no_cache, "neither read nor write the cache");
+  cmd->callback([args] { run_frontier(*args); });
+}
+
+}  // namespace ecorail::cli

@@ -1,0 +1,29 @@
+// The journey half of `ecorail solve`: when --from and --to are not neighbours, the run stops
+// at every station between them. --dwell A7=45 sets one stop's dwell, --dwell 30 every stop's
+// that is not named; --split chooses the optimal (one lambda) or the proportional split.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/output_options.hpp"
+#include "cli/problem_options.hpp"
+
+namespace ecorail::cli {
+
+struct JourneyArgs {
+  std::vector<std::string> dwells;  // "A7=45" or "30"
+  std::string split = "optimal";
+  std::string marginals = "auto";  // on, off, auto (on up to 4 sections)
+};
+
+// Dwell at each intermediate stop; InputError for a malformed value, an unknown or
+// non-intermediate station, or an intermediate stop without a dwell.
+std::vector<double> parse_dwells(const std::vector<std::string>& values,
+                                 const std::vector<std::string>& stops);
+
+void run_journey(const ProblemOptions& problem, const JourneyArgs& journey,
+                 const OutputOptions& outputs, double time_s, bool full_report,
+                 const std::vector<std::string>& stops);
+
+}  // namespace ecorail::cli
