@@ -48,8 +48,8 @@ std::string cache_key(const Problem& p, const FrontierArgs& a, const std::string
   std::snprintf(text, sizeof text, "%s|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g",
                 kCacheVersion, static_cast<unsigned long long>(p.line.checksum()),
                 static_cast<unsigned long long>(data::train_checksum(p.train)), from.c_str(),
-                to.c_str(), a.problem.ds_m, a.problem.dv_kmh, a.problem.objective.c_str(),
-                a.t_min, a.t_max, a.step);
+                to.c_str(), a.problem.ds_m, a.problem.dv_kmh, a.problem.objective.c_str(), a.t_min,
+                a.t_max, a.step);
   char name[64];
   std::snprintf(name, sizeof name, "%016llx.json",
                 static_cast<unsigned long long>(data::fnv1a64(text)));
@@ -80,9 +80,8 @@ output::LabelledFrontier frontier_for(const Problem& p, const FrontierArgs& a,
     std::filesystem::create_directories(cache, ec);
     if (!ec) {
       try {
-        data::write_atomically(file, [&](std::ostream& out) {
-          out << output::frontier_json(lf).dump() << "\n";
-        });
+        data::write_atomically(
+            file, [&](std::ostream& out) { out << output::frontier_json(lf).dump() << "\n"; });
       } catch (const std::exception&) {
         // The cache is an optimisation: failing to write it is not an error.
       }
@@ -110,9 +109,9 @@ void run_frontier(const FrontierArgs& a) {
   } else {
     const auto stops = data::stops_between(p.line, a.problem.from, a.problem.to);
     if (stops.size() != 2) {
-      throw data::InputError("command line", 0, "--to",
-                             "the station next to --from (a frontier is of one section); got '" +
-                                 a.problem.to + "'");
+      throw data::InputError(
+          "command line", 0, "--to",
+          "the station next to --from (a frontier is of one section); got '" + a.problem.to + "'");
     }
     sections.emplace_back(a.problem.from, a.problem.to);
   }
@@ -120,8 +119,9 @@ void run_frontier(const FrontierArgs& a) {
   std::vector<output::LabelledFrontier> frontiers;
   for (std::size_t i = 0; i < sections.size(); ++i) {
     const auto& [from, to] = sections[i];
-    if (sections.size() > 1) std::fprintf(stderr, "frontier %zu/%zu: %s -> %s\n", i + 1,
-                                          sections.size(), from.c_str(), to.c_str());
+    if (sections.size() > 1)
+      std::fprintf(stderr, "frontier %zu/%zu: %s -> %s\n", i + 1, sections.size(), from.c_str(),
+                   to.c_str());
     frontiers.push_back(frontier_for(p, a, from, to, cache));
   }
   std::printf("%-8s %-8s %10s %8s %14s %14s %8s %7s %8s\n", "from", "to", "min_time_s", "points",

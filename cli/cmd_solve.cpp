@@ -4,10 +4,10 @@
 
 #include "cli/commands.hpp"
 #include "cli/journey_solve.hpp"
-#include "data/route_builder.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "data/input_error.hpp"
+#include "data/route_builder.hpp"
 #include "dp/section_solve.hpp"
 #include "output/run_json.hpp"
 #include "physics/units.hpp"
@@ -25,8 +25,8 @@ struct SolveArgs {
 };
 
 void print_regimes(const std::vector<dp::RegimeSpan>& spans) {
-  std::printf("  %-17s %9s %9s %9s %9s %8s %8s\n", "regime", "from_m", "to_m", "v0_kmh",
-              "v1_kmh", "t0_s", "t1_s");
+  std::printf("  %-17s %9s %9s %9s %9s %8s %8s\n", "regime", "from_m", "to_m", "v0_kmh", "v1_kmh",
+              "t0_s", "t1_s");
   for (const auto& r : spans) {
     std::printf("  %-17s %9.2f %9.2f %9.2f %9.2f %8.2f %8.2f\n",
                 std::string(physics::regime_name(r.regime)).c_str(), r.start_m, r.end_m,

@@ -10,6 +10,7 @@ void add_solve_command(CLI::App& app);
 void add_min_time_command(CLI::App& app);
 void add_fit_envelope_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+void add_policy_command(CLI::App& app);
 void add_frontier_command(CLI::App& app);
 
 }  // namespace ecorail::cli

@@ -7,9 +7,9 @@
 #include <iostream>
 #include <map>
 
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
-#include "data/csv_reader.hpp"
 #include "dp/journey.hpp"
 #include "output/journey_json.hpp"
 #include "physics/units.hpp"
@@ -22,9 +22,9 @@ double parse_seconds(const std::string& text, const std::string& value) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0) {
-    throw data::InputError("command line", 0, "--dwell",
-                           "a dwell in seconds >= 0 (e.g. --dwell 30 or --dwell A7=45); got '" +
-                               value + "'");
+    throw data::InputError(
+        "command line", 0, "--dwell",
+        "a dwell in seconds >= 0 (e.g. --dwell 30 or --dwell A7=45); got '" + value + "'");
   }
   return v;
 }
@@ -46,10 +46,11 @@ std::vector<double> parse_dwells(const std::vector<std::string>& values,
     for (std::size_t i = 1; i + 1 < stops.size(); ++i) intermediate |= stops[i] == station;
     if (!intermediate) {
       std::string list;
-      for (std::size_t i = 1; i + 1 < stops.size(); ++i) list += (list.empty() ? "" : ", ") + stops[i];
-      throw data::InputError("command line", 0, "--dwell",
-                             "an intermediate stop of this run (" + list + "); got '" + station +
-                                 "'");
+      for (std::size_t i = 1; i + 1 < stops.size(); ++i)
+        list += (list.empty() ? "" : ", ") + stops[i];
+      throw data::InputError(
+          "command line", 0, "--dwell",
+          "an intermediate stop of this run (" + list + "); got '" + station + "'");
     }
     named[station] = parse_seconds(value.substr(eq + 1), value);
   }
@@ -137,8 +138,8 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   const nlohmann::json report = output::journey_json(sol, labels);
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s (%s split): %.2f s running, traction %.0f kJ",
-                stops.front().c_str(), stops.back().c_str(), args.split.c_str(),
-                sol.running_time_s, units::J_to_kJ(sol.traction_work_J));
+                stops.front().c_str(), stops.back().c_str(), args.split.c_str(), sol.running_time_s,
+                units::J_to_kJ(sol.traction_work_J));
   output::SummaryRows summary = {
       {"journey", stops.front() + " -> " + stops.back()},
       {"split", args.split},

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   ecorail::cli::add_min_time_command(app);
   ecorail::cli::add_fit_envelope_command(app);
   ecorail::cli::add_calibrate_command(app);
+  ecorail::cli::add_policy_command(app);
   ecorail::cli::add_frontier_command(app);
   try {
     app.parse(argc, argv);

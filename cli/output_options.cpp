@@ -21,9 +21,9 @@ void check_output_targets(const OutputOptions& o) {
     if (path.empty()) continue;
     const auto parent = std::filesystem::absolute(path).parent_path();
     if (!std::filesystem::is_directory(parent)) {
-      throw data::InputError("command line", 0, flag,
-                             "a file in an existing directory; '" + parent.string() +
-                                 "' does not exist");
+      throw data::InputError(
+          "command line", 0, flag,
+          "a file in an existing directory; '" + parent.string() + "' does not exist");
     }
   }
 }

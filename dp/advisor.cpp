@@ -53,22 +53,23 @@ Advisor::Advisor(PolicyTable table, const data::Line& line, const physics::Train
   const std::uint64_t train_sum = data::train_checksum(train);
   std::string mismatch;
   if (line_sum != table_.line_checksum) {
-    mismatch += "line checksum differs: the table was made for line '" + table_.line_name +
-                "' (" + hex64(table_.line_checksum) + "), this is line '" + line.name + "' (" +
+    mismatch += "line checksum differs: the table was made for line '" + table_.line_name + "' (" +
+                hex64(table_.line_checksum) + "), this is line '" + line.name + "' (" +
                 hex64(line_sum) + ")";
   }
   if (train_sum != table_.train_checksum) {
     if (!mismatch.empty()) mismatch += "; ";
     mismatch += "train checksum differs: the table was made for train '" + table_.train_name +
-                "' (" + hex64(table_.train_checksum) + "), this is train '" + train.name +
-                "' (" + hex64(train_sum) + ")";
+                "' (" + hex64(table_.train_checksum) + "), this is train '" + train.name + "' (" +
+                hex64(train_sum) + ")";
   }
   if (!mismatch.empty()) {
     throw PolicyMismatchError("policy table " + table_.from + " -> " + table_.to +
                               " refused: " + mismatch);
   }
-  model_ = std::make_shared<const Model>(train, data::build_route(line, table_.from, table_.to, train),
-                                         table_.envelope_resolution_m, table_.grid_spec.substep_m);
+  model_ =
+      std::make_shared<const Model>(train, data::build_route(line, table_.from, table_.to, train),
+                                    table_.envelope_resolution_m, table_.grid_spec.substep_m);
   if (std::abs(model_->route.length_m() - table_.route_length_m) > 1e-6) {
     throw PolicyMismatchError("policy table refused: route length differs from the table's");
   }
@@ -89,8 +90,12 @@ Advisor Advisor::load(const std::filesystem::path& path, const data::Line& line,
   return Advisor(load_policy(path), line, train);
 }
 
-const physics::Route& Advisor::route() const { return model_->route; }
-const physics::Motion& Advisor::motion() const { return model_->motion; }
+const physics::Route& Advisor::route() const {
+  return model_->route;
+}
+const physics::Motion& Advisor::motion() const {
+  return model_->motion;
+}
 
 void Advisor::select_layer(int layer) {
   if (layer < 0 || layer >= static_cast<int>(table_.layers.size())) {

@@ -32,11 +32,11 @@ class PolicyMismatchError : public std::runtime_error {
 struct Advice {
   physics::Control control = physics::Control::Coast;
   physics::Regime regime = physics::Regime::Coast;  // what the train does over the next metre
-  double force_N = 0.0;          // mean applied force over the next metre, traction positive
-  double cost_to_go_J = 0.0;     // expected energy + lambda * time to the stop
-  double time_to_go_s = 0.0;     // expected running time to the stop
-  double energy_to_go_J = 0.0;   // cost_to_go - lambda * time_to_go
-  bool feasible = true;          // false: no control reaches the next grid position
+  double force_N = 0.0;         // mean applied force over the next metre, traction positive
+  double cost_to_go_J = 0.0;    // expected energy + lambda * time to the stop
+  double time_to_go_s = 0.0;    // expected running time to the stop
+  double energy_to_go_J = 0.0;  // cost_to_go - lambda * time_to_go
+  bool feasible = true;         // false: no control reaches the next grid position
 };
 
 class Advisor {

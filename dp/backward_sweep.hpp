@@ -14,12 +14,14 @@
 namespace ecorail::dp {
 
 inline constexpr double kInfeasible = 1e30;  // finite so interpolation never makes NaN
-inline bool is_feasible(double cost) { return cost < 1e25; }
+inline bool is_feasible(double cost) {
+  return cost < 1e25;
+}
 
 struct ValueFunction {
   double lambda = 0.0;
-  std::vector<double> cost_to_go;   // per global node
-  std::vector<std::uint8_t> best;   // optimal control per global node
+  std::vector<double> cost_to_go;  // per global node
+  std::vector<std::uint8_t> best;  // optimal control per global node
 
   // Cost-to-go at stage i interpolated at speed v.
   double at(const StageGrid& grid, int i, double v_ms) const;

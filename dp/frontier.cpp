@@ -57,10 +57,10 @@ void check_frontier_shape(Frontier& f, double tolerance) {
     }
   }
   for (std::size_t k = 1; k + 1 < p.size(); ++k) {
-    const double left = (p[k].cost_J - p[k - 1].cost_J) /
-                        (p[k].running_time_s - p[k - 1].running_time_s);
-    const double right = (p[k + 1].cost_J - p[k].cost_J) /
-                         (p[k + 1].running_time_s - p[k].running_time_s);
+    const double left =
+        (p[k].cost_J - p[k - 1].cost_J) / (p[k].running_time_s - p[k - 1].running_time_s);
+    const double right =
+        (p[k + 1].cost_J - p[k].cost_J) / (p[k + 1].running_time_s - p[k].running_time_s);
     // Convex: slopes rise. Measure the shortfall as an energy over the right-hand step.
     const double shortfall = (left - right) * (p[k + 1].running_time_s - p[k].running_time_s);
     if (shortfall > tolerance * std::abs(p[k].cost_J)) {

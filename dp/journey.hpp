@@ -31,8 +31,8 @@ struct JourneyOptions {
 struct JourneySection {
   LambdaRun run;
   std::vector<RegimeSpan> regimes;
-  double dwell_after_s = 0.0;         // at the section's arrival stop (0 for the last)
-  double marginal_J_per_s = 0.0;      // -(dE/dT) measured by re-solving; NaN if not measured
+  double dwell_after_s = 0.0;     // at the section's arrival stop (0 for the last)
+  double marginal_J_per_s = 0.0;  // -(dE/dT) measured by re-solving; NaN if not measured
   double min_time_s = 0.0;
 };
 

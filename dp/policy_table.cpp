@@ -62,10 +62,9 @@ class Reader {
 
   void need(std::size_t n, const char* field) const {
     if (n > b_.size() - pos_) {
-      throw PolicyFormatError(label_ + ": truncated or inconsistent: field '" + field +
-                              "' needs " + std::to_string(n) + " bytes at offset " +
-                              std::to_string(pos_) + ", only " +
-                              std::to_string(b_.size() - pos_) + " remain");
+      throw PolicyFormatError(label_ + ": truncated or inconsistent: field '" + field + "' needs " +
+                              std::to_string(n) + " bytes at offset " + std::to_string(pos_) +
+                              ", only " + std::to_string(b_.size() - pos_) + " remain");
     }
   }
   std::uint8_t u8(const char* field) {
@@ -75,13 +74,15 @@ class Reader {
   std::uint32_t u32(const char* field) {
     need(4, field);
     std::uint32_t x = 0;
-    for (int k = 0; k < 4; ++k) x |= std::uint32_t{static_cast<std::uint8_t>(b_[pos_++])} << (8 * k);
+    for (int k = 0; k < 4; ++k)
+      x |= std::uint32_t{static_cast<std::uint8_t>(b_[pos_++])} << (8 * k);
     return x;
   }
   std::uint64_t u64(const char* field) {
     need(8, field);
     std::uint64_t x = 0;
-    for (int k = 0; k < 8; ++k) x |= std::uint64_t{static_cast<std::uint8_t>(b_[pos_++])} << (8 * k);
+    for (int k = 0; k < 8; ++k)
+      x |= std::uint64_t{static_cast<std::uint8_t>(b_[pos_++])} << (8 * k);
     return x;
   }
   double f64(const char* field) { return std::bit_cast<double>(u64(field)); }
@@ -121,7 +122,9 @@ std::uint64_t payload_checksum(std::string_view bytes_before_trailer) {
   return data::fnv1a64(bytes_before_trailer);
 }
 
-std::string hex64(std::uint64_t x) { return format("0x%016llx", static_cast<unsigned long long>(x)); }
+std::string hex64(std::uint64_t x) {
+  return format("0x%016llx", static_cast<unsigned long long>(x));
+}
 
 // Time to go along the optimal policy: the same backward recursion as the cost-to-go, over the
 // time of each node's optimal transition.
@@ -248,7 +251,8 @@ void PolicyTable::validate() const {
       fail(which + "per-node arrays do not match the node count");
     }
     for (int n = 0; n < M; ++n) {
-      if (L.control[n] >= physics::kControlCount) fail(which + format("control code at node %d", n));
+      if (L.control[n] >= physics::kControlCount)
+        fail(which + format("control code at node %d", n));
       if (L.regime[n] > static_cast<std::uint8_t>(physics::Regime::FullBrake)) {
         fail(which + format("regime code at node %d", n));
       }
@@ -294,8 +298,8 @@ PolicyTable make_policy_table(const SectionEngine& engine, const std::string& li
   const StageGrid& grid = engine.grid();
   t.position_m = grid.positions();
   for (int i = 0; i <= grid.stage_count(); ++i) {
-    t.stage_offset.push_back(static_cast<std::uint32_t>(
-        i < grid.stage_count() ? grid.offset(i) : grid.total_nodes()));
+    t.stage_offset.push_back(
+        static_cast<std::uint32_t>(i < grid.stage_count() ? grid.offset(i) : grid.total_nodes()));
   }
   t.speed_ms.reserve(grid.total_nodes());
   for (int i = 0; i < grid.stage_count(); ++i) {
@@ -412,13 +416,13 @@ PolicyTable decode_policy(std::string_view b, const std::string& label) {
   const std::uint32_t version = r.u32("version");
   if (version != kPolicyFormatVersion) {
     throw PolicyFormatError(label + ": format version " + std::to_string(version) +
-                            ", this program reads version " +
-                            std::to_string(kPolicyFormatVersion));
+                            ", this program reads version " + std::to_string(kPolicyFormatVersion));
   }
   const std::uint64_t declared = r.u64("file_bytes");
   if (declared != size) {
     throw PolicyFormatError(
-        label + (size < declared ? ": truncated: " : ": size mismatch (corrupted or trailing data): ") +
+        label +
+        (size < declared ? ": truncated: " : ": size mismatch (corrupted or trailing data): ") +
         std::to_string(size) + " bytes, the header says " + std::to_string(declared));
   }
   if (size < kPreambleBytes + kChecksumBytes) {
@@ -453,7 +457,8 @@ PolicyTable decode_policy(std::string_view b, const std::string& label) {
   t.to = p.str("to");
   t.route_length_m = p.f64("route_length_m");
   const std::uint8_t objective = p.u8("objective");
-  if (objective > 1) throw PolicyFormatError(label + ": unknown objective code " + std::to_string(objective));
+  if (objective > 1)
+    throw PolicyFormatError(label + ": unknown objective code " + std::to_string(objective));
   t.objective = objective == 1 ? Objective::Net : Objective::Traction;
   t.grid_spec.ds_m = p.f64("ds_m");
   t.grid_spec.dv_kmh = p.f64("dv_kmh");
@@ -466,10 +471,9 @@ PolicyTable decode_policy(std::string_view b, const std::string& label) {
   const std::size_t per_layer = 5 * 8 + M * (2 + 3 * 8);
   if (N < 2 || M < N || K < 1 || N * 12 + 4 + M * 8 > p.remaining() ||
       K > p.remaining() / per_layer) {
-    throw PolicyFormatError(label + ": inconsistent counts: " + std::to_string(N) +
-                            " stages, " + std::to_string(M) + " nodes, " + std::to_string(K) +
-                            " layers do not fit in " + std::to_string(p.remaining()) +
-                            " bytes");
+    throw PolicyFormatError(label + ": inconsistent counts: " + std::to_string(N) + " stages, " +
+                            std::to_string(M) + " nodes, " + std::to_string(K) +
+                            " layers do not fit in " + std::to_string(p.remaining()) + " bytes");
   }
   t.position_m = p.f64s(N, "position_m");
   t.stage_offset.resize(N + 1);
@@ -521,7 +525,8 @@ void write_policy_csv(std::ostream& out, const PolicyTable& t) {
     for (int i = 0; i < t.stage_count(); ++i) {
       for (std::uint32_t n = t.stage_offset[i]; n < t.stage_offset[i + 1]; ++n) {
         const bool feasible = is_feasible(L.cost_to_go_J[n]);
-        const std::string control(physics::control_name(static_cast<physics::Control>(L.control[n])));
+        const std::string control(
+            physics::control_name(static_cast<physics::Control>(L.control[n])));
         const std::string regime(physics::regime_name(static_cast<physics::Regime>(L.regime[n])));
         if (feasible) {
           std::snprintf(line, sizeof line, "%zu,%.6f,%d,%.6f,%u,%.6f,%s,%s,%.6f,%.6f,%.6f,%.6f\n",
@@ -532,8 +537,8 @@ void write_policy_csv(std::ostream& out, const PolicyTable& t) {
                         units::J_to_kJ(L.cost_to_go_J[n] - L.lambda_J_per_s * L.time_to_go_s[n]));
         } else {
           std::snprintf(line, sizeof line, "%zu,%.6f,%d,%.6f,%u,%.6f,infeasible,,,,,\n", k,
-                        units::J_to_kJ(L.lambda_J_per_s), i, t.position_m[i],
-                        n - t.stage_offset[i], units::ms_to_kmh(t.speed_ms[n]));
+                        units::J_to_kJ(L.lambda_J_per_s), i, t.position_m[i], n - t.stage_offset[i],
+                        units::ms_to_kmh(t.speed_ms[n]));
         }
         out << line;
       }

@@ -40,10 +40,10 @@ inline constexpr std::string_view kPolicyUnits =
 // One time price: the policy and values at every node of the grid.
 struct PolicyLayer {
   double lambda_J_per_s = 0.0;
-  double time_offset_s = 0.0;      // offset of target from the nominal running time (0: nominal)
-  double target_time_s = 0.0;      // running time lambda was searched for
-  double planned_time_s = 0.0;     // re-simulated running time of the lambda-optimal run
-  double planned_energy_J = 0.0;   // its energy cost (by the table's objective)
+  double time_offset_s = 0.0;         // offset of target from the nominal running time (0: nominal)
+  double target_time_s = 0.0;         // running time lambda was searched for
+  double planned_time_s = 0.0;        // re-simulated running time of the lambda-optimal run
+  double planned_energy_J = 0.0;      // its energy cost (by the table's objective)
   std::vector<std::uint8_t> control;  // physics::Control per node
   std::vector<std::uint8_t> regime;   // physics::Regime per node
   std::vector<double> force_N;        // mean applied force over the next metre (signed)

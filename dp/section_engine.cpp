@@ -13,10 +13,8 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
       motion_(train_, route_, envelope_),
       grid_(envelope_, route_.length_m(), options.grid) {
   const auto t0 = std::chrono::steady_clock::now();
-  table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective,
-                                             dp_step());
-  build_wall_s_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
+  build_wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program) const {

@@ -20,9 +20,9 @@ namespace ecorail::dp {
 struct EngineOptions {
   GridSpec grid;
   Objective objective = Objective::Traction;
-  double resim_step_m = 0.05;        // fine step of the forward re-simulation (RK4)
+  double resim_step_m = 0.05;  // fine step of the forward re-simulation (RK4)
   double envelope_resolution_m = 0.1;
-  double decision_step_m = 1.0;      // policy extraction
+  double decision_step_m = 1.0;  // policy extraction
 };
 
 struct LambdaRun {

@@ -28,8 +28,8 @@ void summarise_run(const physics::SimulationResult& sim, double target_time_s,
   s.stop_error_m = sim.stop_error_m;
   s.max_overspeed_kmh = units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms));
   if (sim.stopped_early) {
-    s.warnings.push_back(format("the train came to rest %.2f m before the station",
-                                -sim.stop_error_m));
+    s.warnings.push_back(
+        format("the train came to rest %.2f m before the station", -sim.stop_error_m));
   }
   if (std::abs(sim.stop_error_m) > 0.5) {
     s.warnings.push_back(format("stop error %.2f m exceeds 0.5 m", sim.stop_error_m));
@@ -75,8 +75,8 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
   summarise_run(out.run.sim, target_time_s, s);
   if (!found.converged) {
-    s.warnings.push_back(format("running-time search did not converge to %.3f s",
-                                options.search.tolerance_s));
+    s.warnings.push_back(
+        format("running-time search did not converge to %.3f s", options.search.tolerance_s));
   }
   return out;
 }
@@ -87,8 +87,8 @@ std::string SectionSolveSummary::BriefReport() const {
       "stop error %.3f m, max overspeed %.3f km/h; lambda %.1f kJ/s, %d lambda evaluations, "
       "%.3f s wall, %s",
       from.c_str(), to.c_str(), distance_m, running_time_s, traction_energy_kJ, regen_energy_kJ,
-      stop_error_m, max_overspeed_kmh, lambda_J_per_s / 1000.0, lambda_evaluations,
-      total_wall_s, converged && warnings.empty() ? "CONVERGENCE" : "WARNINGS");
+      stop_error_m, max_overspeed_kmh, lambda_J_per_s / 1000.0, lambda_evaluations, total_wall_s,
+      converged && warnings.empty() ? "CONVERGENCE" : "WARNINGS");
   return r + "\n";
 }
 
@@ -96,18 +96,18 @@ std::string SectionSolveSummary::FullReport() const {
   std::string r = "\necorail section solver report\n\n";
   r += format("  %-28s %s -> %s\n", "Section", from.c_str(), to.c_str());
   r += format("  %-28s %.1f m\n", "Distance", distance_m);
-  r += format("  %-28s %.3f s (minimum %.3f s)\n", "Target running time", target_time_s,
-              min_time_s);
-  r += format("  %-28s %s\n", "Objective",
-              objective == Objective::Net ? "net energy (traction - regenerated)"
-                                          : "traction energy");
-  r += format("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m,
-              grid.dv_kmh, grid.substep_m);
+  r +=
+      format("  %-28s %.3f s (minimum %.3f s)\n", "Target running time", target_time_s, min_time_s);
+  r += format(
+      "  %-28s %s\n", "Objective",
+      objective == Objective::Net ? "net energy (traction - regenerated)" : "traction energy");
+  r += format("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m, grid.dv_kmh,
+              grid.substep_m);
   r += format("  %-28s %d stages, %d nodes\n", "", stages, nodes);
   r += format("  %-28s %d\n", "Threads", threads);
   r += format("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
-  r += format("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n",
-              "Search", lambda_evaluations, trim_simulations, trim_shift_m);
+  r += format("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n", "Search",
+              lambda_evaluations, trim_simulations, trim_shift_m);
   r += format("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
               search_wall_s, total_wall_s);
   r += "\n  Re-simulated result\n";

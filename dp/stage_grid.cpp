@@ -8,8 +8,7 @@
 
 namespace ecorail::dp {
 
-StageGrid::StageGrid(const physics::SpeedEnvelope& envelope, double length_m,
-                     const GridSpec& spec)
+StageGrid::StageGrid(const physics::SpeedEnvelope& envelope, double length_m, const GridSpec& spec)
     : dv_(units::kmh_to_ms(spec.dv_kmh)) {
   if (!(spec.ds_m > 0.0) || !(spec.dv_kmh > 0.0)) {
     throw std::invalid_argument("grid steps ds and dv must be positive");

@@ -38,8 +38,8 @@ class StageGrid {
  private:
   double dv_;
   std::vector<double> s_;
-  std::vector<double> top_;  // envelope speed at each stage
-  std::vector<int> uniform_; // number of uniform nodes below the top node
+  std::vector<double> top_;   // envelope speed at each stage
+  std::vector<int> uniform_;  // number of uniform nodes below the top node
   std::vector<int> offset_;
 };
 

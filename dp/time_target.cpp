@@ -74,8 +74,8 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
                            options.tolerance_s};
   int side = 0;
   for (double tolerance : phases) {
-    while (bracketed && error_of_best() > tolerance &&
-           out.iterations < options.max_iterations && x_hi - x_lo > 1e-4) {
+    while (bracketed && error_of_best() > tolerance && out.iterations < options.max_iterations &&
+           x_hi - x_lo > 1e-4) {
       double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
       if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
       const double fm = evaluate(xm);

@@ -28,11 +28,11 @@ class InfeasibleTimeError : public std::invalid_argument {
 };
 
 struct TimeSearchOptions {
-  double tolerance_s = 0.001;         // final, after the trim
-  double lambda_tolerance_s = 0.05;   // lambda search alone
+  double tolerance_s = 0.001;        // final, after the trim
+  double lambda_tolerance_s = 0.05;  // lambda search alone
   bool trim = true;
   int max_iterations = 60;
-  double lambda_guess = 3e5;  // J/s; only a starting point
+  double lambda_guess = 3e5;    // J/s; only a starting point
   double bracket_factor = 4.0;  // lambda is multiplied or divided by this while bracketing
 };
 

@@ -38,7 +38,7 @@ nlohmann::json frontier_json(const LabelledFrontier& lf) {
   for (const auto& w : f.wobbles) {
     wobbles.push_back({{"time_s", w.time_s}, {"kind", w.kind}, {"size_kJ", w.size_J / 1000.0}});
   }
-  return {{"from", lf.from},       {"to", lf.to},         {"min_running_time_s", f.min_time_s},
+  return {{"from", lf.from},        {"to", lf.to},        {"min_running_time_s", f.min_time_s},
           {"monotone", f.monotone}, {"convex", f.convex}, {"wobbles", wobbles},
           {"points", points}};
 }
@@ -98,8 +98,8 @@ void write_frontiers_plot_svg(const std::filesystem::path& path,
     throw std::runtime_error("cannot write " + path.string() +
                              ": gnuplot is not installed (apt-get install gnuplot-nox)");
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("ecorail-frontier-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ecorail-frontier-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   try {
     const auto data_file = dir / "frontier.dat";
@@ -126,8 +126,8 @@ void write_frontiers_plot_svg(const std::filesystem::path& path,
       }
       gp << "\n";
       gp.close();
-      const std::string cmd = "gnuplot " + script.string() + " > " + (dir / "log").string() +
-                              " 2>&1";
+      const std::string cmd =
+          "gnuplot " + script.string() + " > " + (dir / "log").string() + " 2>&1";
       if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed");
     });
   } catch (...) {

@@ -44,34 +44,34 @@ nlohmann::json journey_json(const dp::JourneySolution& sol, const JourneyLabels&
   double dwell_total = 0.0;
   nlohmann::json dwells = nlohmann::json::array();
   for (std::size_t i = 0; i + 1 < sol.sections.size(); ++i) {
-    dwells.push_back({{"station", labels.stops[i + 1]}, {"dwell_s", sol.sections[i].dwell_after_s}});
+    dwells.push_back(
+        {{"station", labels.stops[i + 1]}, {"dwell_s", sol.sections[i].dwell_after_s}});
     dwell_total += sol.sections[i].dwell_after_s;
   }
-  nlohmann::json j = {
-      {"from", labels.stops.front()},
-      {"to", labels.stops.back()},
-      {"stops", labels.stops},
-      {"split", labels.split},
-      {"traction_energy_kJ", units::J_to_kJ(sol.traction_work_J)},
-      {"braking_energy_kJ", units::J_to_kJ(sol.brake_work_J)},
-      {"regen_energy_kJ", units::J_to_kJ(sol.regen_J)},
-      {"net_energy_kJ", units::J_to_kJ(sol.net_J)},
-      {"running_time_s", sol.running_time_s},
-      {"target_time_s", sol.target_time_s},
-      {"trip_time_s", sol.running_time_s + dwell_total},
-      {"distance_m", distance},
-      {"stop_error_m", worst_stop},
-      {"max_overspeed_kmh", overspeed},
-      {"section_times_s", nlohmann::json::array()},
-      {"sections", sections},
-      {"dwells", dwells},
-      {"regimes", all_regimes},
-      {"converged", sol.converged},
-      {"warnings", sol.warnings},
-      {"grid", {{"ds_m", labels.ds_m}, {"dv_kmh", labels.dv_kmh}}},
-      {"search", {{"lambda_evaluations", sol.lambda_evaluations}}},
-      {"solve_wall_s", sol.total_wall_s},
-      {"threads", labels.threads}};
+  nlohmann::json j = {{"from", labels.stops.front()},
+                      {"to", labels.stops.back()},
+                      {"stops", labels.stops},
+                      {"split", labels.split},
+                      {"traction_energy_kJ", units::J_to_kJ(sol.traction_work_J)},
+                      {"braking_energy_kJ", units::J_to_kJ(sol.brake_work_J)},
+                      {"regen_energy_kJ", units::J_to_kJ(sol.regen_J)},
+                      {"net_energy_kJ", units::J_to_kJ(sol.net_J)},
+                      {"running_time_s", sol.running_time_s},
+                      {"target_time_s", sol.target_time_s},
+                      {"trip_time_s", sol.running_time_s + dwell_total},
+                      {"distance_m", distance},
+                      {"stop_error_m", worst_stop},
+                      {"max_overspeed_kmh", overspeed},
+                      {"section_times_s", nlohmann::json::array()},
+                      {"sections", sections},
+                      {"dwells", dwells},
+                      {"regimes", all_regimes},
+                      {"converged", sol.converged},
+                      {"warnings", sol.warnings},
+                      {"grid", {{"ds_m", labels.ds_m}, {"dv_kmh", labels.dv_kmh}}},
+                      {"search", {{"lambda_evaluations", sol.lambda_evaluations}}},
+                      {"solve_wall_s", sol.total_wall_s},
+                      {"threads", labels.threads}};
   for (const auto& s : sol.sections) j["section_times_s"].push_back(s.run.sim.running_time_s);
   if (std::isfinite(sol.lambda_J_per_s)) {
     j["lambda"] = sol.lambda_J_per_s / 1000.0;

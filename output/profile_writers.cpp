@@ -12,11 +12,21 @@ namespace ecorail::output {
 
 namespace {
 
-const std::vector<std::string> kColumns = {
-    "time_hms",          "speed_cm_s",        "speed_kmh",         "accel_m_s2",
-    "distance_m",        "km_post_m",         "gradient_permille", "traction_force_kN",
-    "traction_power_kW", "time_s",            "braking_force_kN",  "speed_limit_kmh",
-    "regime",            "section",           "dwelling"};
+const std::vector<std::string> kColumns = {"time_hms",
+                                           "speed_cm_s",
+                                           "speed_kmh",
+                                           "accel_m_s2",
+                                           "distance_m",
+                                           "km_post_m",
+                                           "gradient_permille",
+                                           "traction_force_kN",
+                                           "traction_power_kW",
+                                           "time_s",
+                                           "braking_force_kN",
+                                           "speed_limit_kmh",
+                                           "regime",
+                                           "section",
+                                           "dwelling"};
 
 struct Cells {
   double speed_cm_s, speed_kmh, traction_kN, power_kW, braking_kN, limit_kmh;
@@ -45,12 +55,11 @@ void write_profile_csv(const std::filesystem::path& path, const Timeline& rows) 
     char buf[512];
     for (const auto& r : rows) {
       const Cells c = cells(r);
-      std::snprintf(buf, sizeof buf,
-                    "%s,%.1f,%.2f,%.3f,%.2f,%.2f,%.3f,%.2f,%.1f,%.3f,%.2f,%.1f,%s,%d,%d\n",
-                    format_hms(r.t_s).c_str(), c.speed_cm_s, c.speed_kmh, r.accel_m_s2, r.s_m,
-                    r.km_post_m, r.gradient_permille, c.traction_kN, c.power_kW, r.t_s,
-                    c.braking_kN, c.limit_kmh, regime_label(r).c_str(), r.section + 1,
-                    r.dwelling ? 1 : 0);
+      std::snprintf(
+          buf, sizeof buf, "%s,%.1f,%.2f,%.3f,%.2f,%.2f,%.3f,%.2f,%.1f,%.3f,%.2f,%.1f,%s,%d,%d\n",
+          format_hms(r.t_s).c_str(), c.speed_cm_s, c.speed_kmh, r.accel_m_s2, r.s_m, r.km_post_m,
+          r.gradient_permille, c.traction_kN, c.power_kW, r.t_s, c.braking_kN, c.limit_kmh,
+          regime_label(r).c_str(), r.section + 1, r.dwelling ? 1 : 0);
       out << buf;
     }
   });
@@ -70,9 +79,9 @@ void write_profile_xlsx(const std::filesystem::path& path, const Timeline& rows,
     lxw_row_t row = 1;
     for (const auto& r : rows) {
       const Cells c = cells(r);
-      const double values[] = {c.speed_cm_s,  c.speed_kmh, r.accel_m_s2,        r.s_m,
-                               r.km_post_m,   r.gradient_permille, c.traction_kN, c.power_kW,
-                               r.t_s,         c.braking_kN, c.limit_kmh};
+      const double values[] = {c.speed_cm_s, c.speed_kmh,         r.accel_m_s2,  r.s_m,
+                               r.km_post_m,  r.gradient_permille, c.traction_kN, c.power_kW,
+                               r.t_s,        c.braking_kN,        c.limit_kmh};
       worksheet_write_string(sheet, row, 0, format_hms(r.t_s).c_str(), nullptr);
       for (std::size_t i = 0; i < std::size(values); ++i) {
         worksheet_write_number(sheet, row, static_cast<lxw_col_t>(i + 1), values[i], nullptr);

@@ -18,8 +18,10 @@ namespace {
 std::string quote_for_gnuplot(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '\'') out += "''";
-    else out += c;
+    if (c == '\'')
+      out += "''";
+    else
+      out += c;
   }
   return "'" + out + "'";
 }
@@ -32,8 +34,8 @@ void write_speed_plot_svg(const std::filesystem::path& path, const Timeline& tim
     throw std::runtime_error("cannot write " + path.string() +
                              ": gnuplot is not installed (apt-get install gnuplot-nox)");
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("ecorail-plot-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ecorail-plot-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto data_file = dir / "profile.dat";
   const auto script_file = dir / "plot.gp";
@@ -44,8 +46,8 @@ void write_speed_plot_svg(const std::filesystem::path& path, const Timeline& tim
     for (const auto& p : timeline) {
       if (p.s_m - last_s < 0.5 && &p != &timeline.back()) continue;  // 0.5 m is plenty for a plot
       last_s = p.s_m;
-      data << p.s_m << ' ' << units::ms_to_kmh(p.v_ms) << ' '
-           << units::ms_to_kmh(p.speed_limit_ms) << ' ' << p.gradient_permille << '\n';
+      data << p.s_m << ' ' << units::ms_to_kmh(p.v_ms) << ' ' << units::ms_to_kmh(p.speed_limit_ms)
+           << ' ' << p.gradient_permille << '\n';
     }
   }
   try {
@@ -59,8 +61,7 @@ void write_speed_plot_svg(const std::filesystem::path& path, const Timeline& tim
          << "set size 1,0.68\nset origin 0,0.30\nset key top right\n"
          << "set ylabel 'speed (km/h)'\nset yrange [0:*]\nset format x ''\n"
          << "plot " << d << " using 1:3 with steps lw 1.5 dt 2 lc rgb '#d62728' title "
-         << "'speed limit', " << d
-         << " using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'speed'\n"
+         << "'speed limit', " << d << " using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'speed'\n"
          << "set size 1,0.30\nset origin 0,0.0\nset format x '%g'\nset autoscale y\n"
          << "set xlabel 'distance from departure (m)'\nset ylabel 'gradient (per mille)'\n"
          << "plot " << d << " using 1:4 with steps lw 1.5 lc rgb '#2ca02c' "

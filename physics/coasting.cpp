@@ -56,9 +56,13 @@ double CoastingCurve::G(double v) const {
   return v * v / (2.0 * alpha_);
 }
 
-double CoastingCurve::distance_m(double v0, double v1) const { return k_ * (G(v0) - G(v1)); }
+double CoastingCurve::distance_m(double v0, double v1) const {
+  return k_ * (G(v0) - G(v1));
+}
 
-double CoastingCurve::time_s(double v0, double v1) const { return k_ * (H(v0) - H(v1)); }
+double CoastingCurve::time_s(double v0, double v1) const {
+  return k_ * (H(v0) - H(v1));
+}
 
 double CoastingCurve::speed_after_m(double v0, double s_m) const {
   // The coast tends to the balancing speed (if v0 is on its far side or it exists) or to rest.

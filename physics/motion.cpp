@@ -46,7 +46,8 @@ namespace {
 Regime classify(double u, double max_traction, double max_brake) {
   constexpr double kFull = 0.99;   // within 1 % of the envelope counts as full
   constexpr double kZero_N = 1.0;  // below 1 N the train is coasting
-  if (u > kZero_N) return u >= kFull * max_traction ? Regime::FullTraction : Regime::PartialTraction;
+  if (u > kZero_N)
+    return u >= kFull * max_traction ? Regime::FullTraction : Regime::PartialTraction;
   if (u < -kZero_N) return -u >= kFull * max_brake ? Regime::FullBrake : Regime::PartialBrake;
   return Regime::Coast;
 }

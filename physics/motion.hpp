@@ -70,6 +70,8 @@ class Motion {
   const SpeedEnvelope* envelope_;
 };
 
-inline double speed_from_e(double e) { return e > 0.0 ? std::sqrt(2.0 * e) : 0.0; }
+inline double speed_from_e(double e) {
+  return e > 0.0 ? std::sqrt(2.0 * e) : 0.0;
+}
 
 }  // namespace ecorail::physics

@@ -45,9 +45,9 @@ struct SimulationResult {
   double running_time_s = 0.0;
   double end_position_m = 0.0;  // where the train came to rest (or route end if still moving)
   double end_speed_ms = 0.0;
-  double stop_error_m = 0.0;       // end position minus route length
-  double max_overspeed_ms = 0.0;   // largest excess over the line's static limit
-  bool stopped_early = false;      // came to rest before the end of the route
+  double stop_error_m = 0.0;      // end position minus route length
+  double max_overspeed_ms = 0.0;  // largest excess over the line's static limit
+  bool stopped_early = false;     // came to rest before the end of the route
 };
 
 // Runs a feedback law; the law is queried once per step and steps end at each breakpoint.

@@ -62,9 +62,13 @@ double interpolate(const std::vector<double>& samples, double h, double s) {
 }
 }  // namespace
 
-double SpeedEnvelope::e_at(double s_m) const { return interpolate(e_, h_, s_m); }
+double SpeedEnvelope::e_at(double s_m) const {
+  return interpolate(e_, h_, s_m);
+}
 
-double SpeedEnvelope::v_at(double s_m) const { return std::sqrt(2.0 * std::max(0.0, e_at(s_m))); }
+double SpeedEnvelope::v_at(double s_m) const {
+  return std::sqrt(2.0 * std::max(0.0, e_at(s_m)));
+}
 
 double SpeedEnvelope::static_limit_ms(double s_m) const {
   return std::sqrt(2.0 * interpolate(e_static_, h_, s_m));

@@ -20,8 +20,8 @@ struct RegimeSearchResult {
   double hold_length_m = 0.0;
 };
 
-inline physics::SimulationResult run_strategy(const physics::Motion& motion, double x1,
-                                              double hold, double step_m) {
+inline physics::SimulationResult run_strategy(const physics::Motion& motion, double x1, double hold,
+                                              double step_m) {
   physics::SimulationOptions opt;
   opt.step_m = step_m;
   physics::ControlProgram program = {{0.0, physics::Control::MaxTraction},
@@ -94,8 +94,7 @@ inline RegimeSearchResult search_regimes(const physics::Motion& motion, double t
     }
   }
   if (std::isfinite(r.traction_energy_J)) {
-    r.running_time_s =
-        run_strategy(motion, r.traction_end_m, r.hold_length_m, 0.05).running_time_s;
+    r.running_time_s = run_strategy(motion, r.traction_end_m, r.hold_length_m, 0.05).running_time_s;
   }
   return r;
 }

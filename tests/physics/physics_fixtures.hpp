@@ -18,8 +18,8 @@ inline physics::Train unconstrained_train() {
 
 inline physics::Route straight_track(double gradient_permille, double length_m = 20000.0,
                                      double limit_kmh = 200.0) {
-  return physics::Route({{0.0, length_m, gradient_permille, 0.0, units::kmh_to_ms(limit_kmh)}},
-                        0.0, 1, "start", "end");
+  return physics::Route({{0.0, length_m, gradient_permille, 0.0, units::kmh_to_ms(limit_kmh)}}, 0.0,
+                        1, "start", "end");
 }
 
 }  // namespace ecorail::test

@@ -34,8 +34,7 @@ TEST_P(CoastingAgreement, IntegratorMatchesClosedFormToOnePartPerMillion) {
   // Compare at several distances along the coast, not only at its end.
   for (int k = 1; k <= 4; ++k) {
     const double target = c.distance_m * k / 4.0;
-    const physics::Advance adv =
-        motion.advance(s, e, target, physics::Control::Coast, fine);
+    const physics::Advance adv = motion.advance(s, e, target, physics::Control::Coast, fine);
     ASSERT_FALSE(adv.stalled);
     s = target;
     e = adv.e_end;
@@ -48,13 +47,13 @@ TEST_P(CoastingAgreement, IntegratorMatchesClosedFormToOnePartPerMillion) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Gradients, CoastingAgreement,
-    ::testing::Values(CoastCase{"flat", 0.0, 70.0, 1500.0},
-                      CoastCase{"climb_10", 10.0, 70.0, 500.0},
-                      CoastCase{"descent_20_from_below", -20.0, 40.0, 3000.0},
-                      CoastCase{"descent_20_from_above", -20.0, 120.0, 3000.0}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Gradients, CoastingAgreement,
+                         ::testing::Values(CoastCase{"flat", 0.0, 70.0, 1500.0},
+                                           CoastCase{"climb_10", 10.0, 70.0, 500.0},
+                                           CoastCase{"descent_20_from_below", -20.0, 40.0, 3000.0},
+                                           CoastCase{"descent_20_from_above", -20.0, 120.0,
+                                                     3000.0}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Coasting, DescentHasBalancingSpeedThatTheIntegratorApproaches) {
   const physics::Train train = test::unconstrained_train();

@@ -78,8 +78,7 @@ TEST(EnergyLedger, WorkEnergyBalanceCloses) {
     const double v = 0.5 * (a.v_ms + b.v_ms);
     resistance_work += train.resistance_N(v, route.at(mid).track_N_per_kN()) * (b.s_m - a.s_m);
   }
-  const double balance =
-      sim.energy.traction_work_J - sim.energy.brake_work_J - resistance_work;
+  const double balance = sim.energy.traction_work_J - sim.energy.brake_work_J - resistance_work;
   EXPECT_NEAR(balance, 0.0, 1e-3 * sim.energy.traction_work_J);
   EXPECT_NEAR(sim.energy.regen_J, 0.95 * sim.energy.brake_work_J, 1e-6);
 }
