@@ -1,5 +1,7 @@
 #include "dp/transition_table.hpp"
 
+#include <algorithm>
+
 namespace ecorail::dp {
 
 TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid& grid,
@@ -26,6 +28,35 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
       t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J);
       t.time_s = adv.time_s;
       grid.locate(i + 1, physics::speed_from_e(adv.e_end), &t.lower, &t.weight);
+    }
+  }
+  // Dependency ranges of the sweep's chunks: the next-stage chunks any transition lands in.
+  deps_.chunk_offset.assign(1, 0);
+  for (int i = 0; i <= last; ++i) {
+    const int chunks = (grid.node_count(i) + kSweepChunk - 1) / kSweepChunk;
+    deps_.chunk_offset.push_back(deps_.chunk_offset.back() + chunks);
+  }
+  deps_.first.assign(deps_.chunk_offset.back(), 0);
+  deps_.last.assign(deps_.chunk_offset.back(), -1);
+  for (int i = 0; i < last; ++i) {
+    const int begin = grid.offset(i);
+    const int next_begin = grid.offset(i + 1);
+    const int next_count = grid.node_count(i + 1);
+    for (int c = 0; c < deps_.chunks(i); ++c) {
+      int lo = next_count, hi = -1;
+      const int end = std::min(begin + grid.node_count(i), begin + (c + 1) * kSweepChunk);
+      for (int node = begin + c * kSweepChunk; node < end; ++node) {
+        for (int k = 0; k < physics::kControlCount; ++k) {
+          const Transition& t = at(node, static_cast<physics::Control>(k));
+          if (t.lower < 0) continue;
+          const int local = t.lower - next_begin;
+          lo = std::min(lo, local);
+          hi = std::max(hi, std::min(local + 1, next_count - 1));
+        }
+      }
+      const int g = deps_.chunk_offset[i] + c;
+      deps_.first[g] = hi < 0 ? 0 : lo / kSweepChunk;
+      deps_.last[g] = hi < 0 ? -1 : hi / kSweepChunk;
     }
   }
 }

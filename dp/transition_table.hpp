@@ -12,6 +12,7 @@
 
 #include "dp/objective.hpp"
 #include "dp/stage_grid.hpp"
+#include "dp/stage_work.hpp"
 #include "physics/control.hpp"
 #include "physics/motion.hpp"
 
@@ -28,12 +29,15 @@ class TransitionTable {
  public:
   TransitionTable(const physics::Motion& motion, const StageGrid& grid, Objective objective,
                   const physics::StepSettings& step);
+  // Which chunks of the next stage each chunk reads (for the sweep's scheduling).
+  const ChunkDependencies& dependencies() const { return deps_; }
   const Transition& at(int node, physics::Control c) const {
     return table_[static_cast<std::size_t>(node) * physics::kControlCount + static_cast<int>(c)];
   }
 
  private:
   std::vector<Transition> table_;
+  ChunkDependencies deps_;
 };
 
 }  // namespace ecorail::dp
