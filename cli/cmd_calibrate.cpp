@@ -14,6 +14,7 @@
 #include "fitting/calibration.hpp"
 #include "fitting/fit_json.hpp"
 #include "fitting/log_reader.hpp"
+#include "output/run_json.hpp"
 
 namespace ecorail::cli {
 
@@ -84,7 +85,7 @@ void run_calibrate(const CalibrateArgs& a) {
   }
   if (!a.json.empty()) {
     const nlohmann::json j = calibration_to_json(s);
-    data::write_atomically(a.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+    output::write_json(a.json, j);
     std::cout << "wrote " << a.json << "\n";
   }
 }

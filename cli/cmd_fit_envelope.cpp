@@ -11,6 +11,7 @@
 #include "data/train_io.hpp"
 #include "fitting/envelope_fit.hpp"
 #include "fitting/fit_json.hpp"
+#include "output/run_json.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -57,7 +58,7 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
   }
   if (!a.json.empty()) {
     const nlohmann::json j = envelope_fit_to_json(result, kind, written);
-    data::write_atomically(a.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+    output::write_json(a.json, j);
     std::cout << "wrote " << a.json << "\n";
   }
 }

@@ -14,6 +14,7 @@
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "output/frontier_io.hpp"
+#include "output/run_json.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -142,7 +143,7 @@ void run_frontier(const FrontierArgs& a) {
     for (const auto& lf : frontiers) j.push_back(output::frontier_json(lf));
     nlohmann::json doc = a.all ? nlohmann::json{{"frontiers", j}} : j[0];
     doc["grid"] = {{"ds_m", a.problem.ds_m}, {"dv_kmh", a.problem.dv_kmh}};
-    data::write_atomically(a.json, [&](std::ostream& out) { out << doc.dump(2) << "\n"; });
+    output::write_json(a.json, doc);
   }
   if (!a.csv.empty()) output::write_frontiers_csv(a.csv, frontiers);
   if (!a.plot.empty()) {

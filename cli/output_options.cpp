@@ -1,5 +1,7 @@
 #include "cli/output_options.hpp"
 
+#include "output/run_json.hpp"
+
 #include <filesystem>
 
 #include "data/atomic_file.hpp"
@@ -32,7 +34,7 @@ void write_outputs(const OutputOptions& o, const nlohmann::json& report,
                    const output::Timeline& timeline, const std::string& title,
                    const output::SummaryRows& summary) {
   if (!o.json.empty()) {
-    data::write_atomically(o.json, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+    output::write_json(o.json, report);
   }
   if (!o.csv.empty() || !o.xlsx.empty()) {
     const output::Timeline rows = output::per_second(timeline);

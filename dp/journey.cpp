@@ -1,5 +1,8 @@
 #include "dp/journey.hpp"
 
+#include "dp/lambda_bracket.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,49 +47,23 @@ void optimal_split(const std::vector<std::unique_ptr<SectionEngine>>& engines, d
     }
     return f;
   };
+  LambdaBracket bracket(evaluate, std::log(opt.lambda_guess), std::log(opt.bracket_factor),
+                        opt.max_iterations);
   const double coarse = opt.trim ? opt.lambda_tolerance_s : opt.tolerance_s;
-  double x_lo = std::log(opt.lambda_guess), f_lo = evaluate(x_lo);
-  double x_hi = x_lo, f_hi = f_lo;
-  const double step = std::log(4.0);
-  while (f_lo < 0.0 && out.lambda_evaluations < opt.max_iterations && x_lo > 0.0) {
-    x_hi = x_lo, f_hi = f_lo;
-    x_lo -= step;
-    f_lo = evaluate(x_lo);
-  }
-  while (f_hi > 0.0 && out.lambda_evaluations < opt.max_iterations && x_hi < std::log(1e12)) {
-    x_lo = x_hi, f_lo = f_hi;
-    x_hi += step;
-    f_hi = evaluate(x_hi);
-  }
-  int side = 0;
-  while (best_err > coarse && f_lo >= 0.0 && f_hi <= 0.0 &&
-         out.lambda_evaluations < opt.max_iterations && x_hi - x_lo > 1e-4) {
-    double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
-    if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
-    const double fm = evaluate(xm);
-    if (fm > 0.0) {
-      x_lo = xm, f_lo = fm;
-      if (side == -1) f_hi *= 0.5;
-      side = -1;
-    } else {
-      x_hi = xm, f_hi = fm;
-      if (side == 1) f_lo *= 0.5;
-      side = 1;
-    }
-  }
-  // Close the rest on one section: the longest-running one has the most room to move.
-  const double residual = total_time(best) - target;
-  if (std::abs(residual) <= opt.tolerance_s) {
+  bracket.narrow([&] { return best_err <= coarse; });
+  // Close the rest on one section, the longest-running first (it has the most room to move);
+  // if no section can, narrow lambda to the fine tolerance instead.
+  if (best_err <= opt.tolerance_s) {
     out.converged = true;
     return;
   }
-  if (!opt.trim) return;
+  const double residual = total_time(best) - target;
   std::vector<std::size_t> order(best.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return best[a].sim.running_time_s > best[b].sim.running_time_s;
   });
-  for (std::size_t i : order) {
+  for (std::size_t i : opt.trim ? order : std::vector<std::size_t>{}) {
     TimeSearchResult r;
     r.run = best[i];
     if (trim_to_time(*engines[i], best[i].sim.running_time_s - residual, opt.tolerance_s, r)) {
@@ -95,6 +72,8 @@ void optimal_split(const std::vector<std::unique_ptr<SectionEngine>>& engines, d
       return;
     }
   }
+  bracket.narrow([&] { return best_err <= opt.tolerance_s; });
+  out.converged = best_err <= opt.tolerance_s;
 }
 
 }  // namespace

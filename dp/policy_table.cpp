@@ -12,17 +12,12 @@
 #include "data/atomic_file.hpp"
 #include "data/line.hpp"
 #include "dp/backward_sweep.hpp"
+#include "dp/text_format.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
 
 namespace {
-
-std::string format(const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
 
 constexpr std::size_t kMaxString = 4096;
 constexpr std::size_t kChecksumBytes = 8;
@@ -123,7 +118,7 @@ std::uint64_t payload_checksum(std::string_view bytes_before_trailer) {
 }
 
 std::string hex64(std::uint64_t x) {
-  return format("0x%016llx", static_cast<unsigned long long>(x));
+  return format_text("0x%016llx", static_cast<unsigned long long>(x));
 }
 
 // Time to go along the optimal policy: the same backward recursion as the cost-to-go, over the
@@ -221,7 +216,7 @@ void PolicyTable::validate() const {
   if (position_m.front() != 0.0) fail("first stage is not at 0 m");
   for (int i = 1; i < N; ++i) {
     if (!(position_m[i] > position_m[i - 1]) || !std::isfinite(position_m[i])) {
-      fail(format("stage positions not increasing at stage %d", i));
+      fail(format_text("stage positions not increasing at stage %d", i));
     }
   }
   if (std::abs(position_m.back() - route_length_m) > 1e-6) fail("last stage is not the stop");
@@ -230,11 +225,12 @@ void PolicyTable::validate() const {
     fail("stage offsets do not cover the nodes");
   }
   for (int i = 0; i < N; ++i) {
-    if (!(stage_offset[i + 1] > stage_offset[i])) fail(format("stage %d has no node", i));
+    if (!(stage_offset[i + 1] > stage_offset[i])) fail(format_text("stage %d has no node", i));
     for (std::uint32_t n = stage_offset[i]; n < stage_offset[i + 1]; ++n) {
-      if (!(std::isfinite(speed_ms[n]) && speed_ms[n] >= 0.0)) fail(format("speed of node %u", n));
+      if (!(std::isfinite(speed_ms[n]) && speed_ms[n] >= 0.0))
+        fail(format_text("speed of node %u", n));
       if (n > stage_offset[i] && !(speed_ms[n] > speed_ms[n - 1])) {
-        fail(format("node speeds not increasing at stage %d", i));
+        fail(format_text("node speeds not increasing at stage %d", i));
       }
     }
   }
@@ -243,7 +239,7 @@ void PolicyTable::validate() const {
   }
   for (std::size_t k = 0; k < layers.size(); ++k) {
     const PolicyLayer& L = layers[k];
-    const std::string which = format("layer %zu: ", k);
+    const std::string which = format_text("layer %zu: ", k);
     if (!(std::isfinite(L.lambda_J_per_s) && L.lambda_J_per_s >= 0.0)) fail(which + "lambda");
     if (L.control.size() != speed_ms.size() || L.regime.size() != speed_ms.size() ||
         L.force_N.size() != speed_ms.size() || L.cost_to_go_J.size() != speed_ms.size() ||
@@ -252,13 +248,13 @@ void PolicyTable::validate() const {
     }
     for (int n = 0; n < M; ++n) {
       if (L.control[n] >= physics::kControlCount)
-        fail(which + format("control code at node %d", n));
+        fail(which + format_text("control code at node %d", n));
       if (L.regime[n] > static_cast<std::uint8_t>(physics::Regime::FullBrake)) {
-        fail(which + format("regime code at node %d", n));
+        fail(which + format_text("regime code at node %d", n));
       }
       if (!std::isfinite(L.force_N[n]) || !std::isfinite(L.cost_to_go_J[n]) ||
           !std::isfinite(L.time_to_go_s[n]) || L.time_to_go_s[n] < 0.0) {
-        fail(which + format("non-finite or negative value at node %d", n));
+        fail(which + format_text("non-finite or negative value at node %d", n));
       }
     }
     if (L.cost_to_go_J[M - 1] != 0.0 || L.time_to_go_s[M - 1] != 0.0) {

@@ -6,17 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dp/text_format.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
-
-namespace {
-std::string format(const char* fmt, auto... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
-}  // namespace
 
 void summarise_run(const physics::SimulationResult& sim, double target_time_s,
                    SectionSolveSummary& s) {
@@ -29,17 +22,18 @@ void summarise_run(const physics::SimulationResult& sim, double target_time_s,
   s.max_overspeed_kmh = units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms));
   if (sim.stopped_early) {
     s.warnings.push_back(
-        format("the train came to rest %.2f m before the station", -sim.stop_error_m));
+        format_text("the train came to rest %.2f m before the station", -sim.stop_error_m));
   }
   if (std::abs(sim.stop_error_m) > 0.5) {
-    s.warnings.push_back(format("stop error %.2f m exceeds 0.5 m", sim.stop_error_m));
+    s.warnings.push_back(format_text("stop error %.2f m exceeds 0.5 m", sim.stop_error_m));
   }
   if (s.max_overspeed_kmh > 0.05) {
-    s.warnings.push_back(format("speed limit exceeded by %.3f km/h", s.max_overspeed_kmh));
+    s.warnings.push_back(format_text("speed limit exceeded by %.3f km/h", s.max_overspeed_kmh));
   }
   if (target_time_s > 0.0 && std::abs(sim.running_time_s - target_time_s) > 0.1) {
-    s.warnings.push_back(format("running time %.3f s misses the target %.3f s by more than 0.1 s",
-                                sim.running_time_s, target_time_s));
+    s.warnings.push_back(
+        format_text("running time %.3f s misses the target %.3f s by more than 0.1 s",
+                    sim.running_time_s, target_time_s));
   }
 }
 
@@ -76,13 +70,13 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   summarise_run(out.run.sim, target_time_s, s);
   if (!found.converged) {
     s.warnings.push_back(
-        format("running-time search did not converge to %.3f s", options.search.tolerance_s));
+        format_text("running-time search did not converge to %.3f s", options.search.tolerance_s));
   }
   return out;
 }
 
 std::string SectionSolveSummary::BriefReport() const {
-  std::string r = format(
+  std::string r = format_text(
       "ecorail solve %s -> %s (%.1f m) in %.3f s: traction %.1f kJ, regenerated %.1f kJ, "
       "stop error %.3f m, max overspeed %.3f km/h; lambda %.1f kJ/s, %d lambda evaluations, "
       "%.3f s wall, %s",
@@ -94,31 +88,31 @@ std::string SectionSolveSummary::BriefReport() const {
 
 std::string SectionSolveSummary::FullReport() const {
   std::string r = "\necorail section solver report\n\n";
-  r += format("  %-28s %s -> %s\n", "Section", from.c_str(), to.c_str());
-  r += format("  %-28s %.1f m\n", "Distance", distance_m);
-  r +=
-      format("  %-28s %.3f s (minimum %.3f s)\n", "Target running time", target_time_s, min_time_s);
-  r += format(
+  r += format_text("  %-28s %s -> %s\n", "Section", from.c_str(), to.c_str());
+  r += format_text("  %-28s %.1f m\n", "Distance", distance_m);
+  r += format_text("  %-28s %.3f s (minimum %.3f s)\n", "Target running time", target_time_s,
+                   min_time_s);
+  r += format_text(
       "  %-28s %s\n", "Objective",
       objective == Objective::Net ? "net energy (traction - regenerated)" : "traction energy");
-  r += format("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m, grid.dv_kmh,
-              grid.substep_m);
-  r += format("  %-28s %d stages, %d nodes\n", "", stages, nodes);
-  r += format("  %-28s %d\n", "Threads", threads);
-  r += format("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
-  r += format("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n", "Search",
-              lambda_evaluations, trim_simulations, trim_shift_m);
-  r += format("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
-              search_wall_s, total_wall_s);
+  r += format_text("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m,
+                   grid.dv_kmh, grid.substep_m);
+  r += format_text("  %-28s %d stages, %d nodes\n", "", stages, nodes);
+  r += format_text("  %-28s %d\n", "Threads", threads);
+  r += format_text("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
+  r += format_text("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n",
+                   "Search", lambda_evaluations, trim_simulations, trim_shift_m);
+  r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
+                   search_wall_s, total_wall_s);
   r += "\n  Re-simulated result\n";
-  r += format("  %-28s %.4f s\n", "Running time", running_time_s);
-  r += format("  %-28s %.3f kJ\n", "Traction energy", traction_energy_kJ);
-  r += format("  %-28s %.3f kJ\n", "Braking work", braking_energy_kJ);
-  r += format("  %-28s %.3f kJ\n", "Regenerated energy", regen_energy_kJ);
-  r += format("  %-28s %.3f kJ\n", "Net energy", net_energy_kJ);
-  r += format("  %-28s %.4f m\n", "Stop error", stop_error_m);
-  r += format("  %-28s %.4f km/h\n", "Max overspeed", max_overspeed_kmh);
-  r += format("\n  %-28s %s\n", "Termination", converged ? "CONVERGENCE" : "NO_CONVERGENCE");
+  r += format_text("  %-28s %.4f s\n", "Running time", running_time_s);
+  r += format_text("  %-28s %.3f kJ\n", "Traction energy", traction_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Braking work", braking_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Regenerated energy", regen_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Net energy", net_energy_kJ);
+  r += format_text("  %-28s %.4f m\n", "Stop error", stop_error_m);
+  r += format_text("  %-28s %.4f km/h\n", "Max overspeed", max_overspeed_kmh);
+  r += format_text("\n  %-28s %s\n", "Termination", converged ? "CONVERGENCE" : "NO_CONVERGENCE");
   for (const auto& w : warnings) r += "  warning: " + w + "\n";
   return r;
 }

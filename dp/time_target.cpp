@@ -1,5 +1,7 @@
 #include "dp/time_target.hpp"
 
+#include "dp/lambda_bracket.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -50,45 +52,14 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
     return true;
   };
 
-  // Bracket: f(lo) > 0 (too slow), f(hi) < 0 (too fast), in x = log(lambda).
-  double x_lo = std::log(options.lambda_guess);
-  double f_lo = evaluate(x_lo);
-  double x_hi = x_lo, f_hi = f_lo;
-  const double step = std::log(options.bracket_factor);
-  while (f_lo < 0.0 && out.iterations < options.max_iterations && x_lo > 0.0) {
-    x_hi = x_lo, f_hi = f_lo;
-    x_lo -= step;
-    f_lo = evaluate(x_lo);
-  }
-  while (f_hi > 0.0 && out.iterations < options.max_iterations && x_hi < std::log(1e12)) {
-    x_lo = x_hi, f_lo = f_hi;
-    x_hi += step;
-    f_hi = evaluate(x_hi);
-  }
-  const bool bracketed = f_lo >= 0.0 && f_hi <= 0.0;
-
-  // Illinois regula falsi on log(lambda): first to the coarse tolerance, where the trim takes
-  // over; if the trim cannot close the gap, on to the fine tolerance without it. A bracket
-  // narrower than 0.01 % of lambda straddles a jump of T(lambda) and ends a phase.
+  LambdaBracket bracket(evaluate, std::log(options.lambda_guess), std::log(options.bracket_factor),
+                        options.max_iterations);
+  // First to the coarse tolerance, where the trim takes over; if the trim cannot close the gap,
+  // on to the fine tolerance without it.
   const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,
                            options.tolerance_s};
-  int side = 0;
   for (double tolerance : phases) {
-    while (bracketed && error_of_best() > tolerance && out.iterations < options.max_iterations &&
-           x_hi - x_lo > 1e-4) {
-      double xm = (x_lo * f_hi - x_hi * f_lo) / (f_hi - f_lo);
-      if (!(xm > x_lo && xm < x_hi)) xm = 0.5 * (x_lo + x_hi);
-      const double fm = evaluate(xm);
-      if (fm > 0.0) {
-        x_lo = xm, f_lo = fm;
-        if (side == -1) f_hi *= 0.5;
-        side = -1;
-      } else {
-        x_hi = xm, f_hi = fm;
-        if (side == 1) f_lo *= 0.5;
-        side = 1;
-      }
-    }
+    bracket.narrow([&] { return error_of_best() <= tolerance; });
     if (error_of_best() <= options.tolerance_s || trimmed()) {
       out.converged = true;
       return out;

@@ -1,5 +1,7 @@
 #include "output/run_json.hpp"
 
+#include "data/atomic_file.hpp"
+
 #include "physics/units.hpp"
 
 namespace ecorail::output {
@@ -55,6 +57,10 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   j["solve_wall_s"] = s.total_wall_s;
   j["threads"] = s.threads;
   return j;
+}
+
+void write_json(const std::filesystem::path& path, const nlohmann::json& document) {
+  data::write_atomically(path, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
 }
 
 }  // namespace ecorail::output

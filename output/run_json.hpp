@@ -2,6 +2,7 @@
 // new keys may be added, none renamed. All figures come from the re-simulated run.
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -16,5 +17,7 @@ nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans);
 nlohmann::json run_json(const physics::SimulationResult& sim);
 // The full report of a single-section solve.
 nlohmann::json section_solution_json(const dp::SectionSolution& solution);
+// Writes a JSON document (indented, newline-terminated) atomically.
+void write_json(const std::filesystem::path& path, const nlohmann::json& document);
 
 }  // namespace ecorail::output

@@ -1,0 +1,35 @@
+// LambdaBracket: the root search shared by the single-section and the journey running-time
+// searches. With x = log(lambda), f(x) = running time - target falls as x grows. The bracket is
+// found by stepping x from a starting point until f changes sign, then narrowed by regula falsi
+// (Illinois variant, which halves a stale end's value so the bracket keeps shrinking from both
+// sides). The caller scores every evaluation itself and says when it is close enough.
+#pragma once
+
+#include <functional>
+
+namespace ecorail::dp {
+
+class LambdaBracket {
+ public:
+  using Function = std::function<double(double x)>;
+
+  // Evaluates f at x0 and steps by `step` (in log lambda) until the root is bracketed, within
+  // lambda in [1, 1e12] J/s and the evaluation budget.
+  LambdaBracket(Function f, double x0, double step, int max_evaluations);
+  // Narrows until done() holds, the bracket is narrower than min_width (a jump of the ragged
+  // running time lies inside it) or the budget is spent.
+  void narrow(const std::function<bool()>& done, double min_width = 1e-4);
+  bool bracketed() const { return f_lo_ >= 0.0 && f_hi_ <= 0.0; }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  double evaluate(double x);
+
+  Function f_;
+  int max_evaluations_;
+  int evaluations_ = 0;
+  double x_lo_ = 0.0, f_lo_ = 0.0, x_hi_ = 0.0, f_hi_ = 0.0;
+  int side_ = 0;
+};
+
+}  // namespace ecorail::dp
