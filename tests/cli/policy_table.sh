@@ -3,31 +3,12 @@
 # lambda ladder, and turns a truncated or corrupted file, another train or another line into one
 # clear error line with exit code 2 (never a crash); failed runs leave no file behind.
 set -uo pipefail
-ecorail="$1"
-src="$2"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail=0
+source "$(dirname "$0")/lib/common.sh" "$@"
 
 check() {  # check "description" command...
   local what="$1"
   shift
   if ! "$@"; then echo "FAIL: $what"; fail=1; fi
-}
-
-expect_error() {  # expect_error "needle" args...
-  local needle="$1"
-  shift
-  "$ecorail" "$@" > stdout.txt 2> stderr.txt
-  local code=$?
-  if [ "$code" -ne 2 ]; then
-    echo "FAIL: exit $code (want 2): $*"; cat stderr.txt; fail=1
-  elif ! grep -qF -- "$needle" stderr.txt; then
-    echo "FAIL: message lacks '$needle': $*"; cat stderr.txt; fail=1
-  elif [ "$(grep -c . stderr.txt)" -ne 1 ]; then
-    echo "FAIL: more than one line of error: $*"; cat stderr.txt; fail=1
-  fi
 }
 
 # A table and its CSV.
