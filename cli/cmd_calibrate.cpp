@@ -96,7 +96,7 @@ void add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand(
       "calibrate",
-      "Calibrate the train model (Davis A, B, C, rotating-mass factor, gradient scale) from "
+      "calibrate the train model (Davis A, B, C, rotating-mass factor, gradient scale) from "
       "per-second logs");
   cmd->add_option("--log", args->logs,
                   "per-second log (published table or plain CSV); repeat for several logs")

@@ -69,7 +69,7 @@ void add_fit_envelope_command(CLI::App& app) {
   auto args = std::make_shared<FitEnvelopeArgs>();
   CLI::App* cmd = app.add_subcommand(
       "fit-envelope",
-      "Fit a traction or braking envelope (piecewise and constant-power forms) to (speed, force) "
+      "fit a traction or braking envelope (piecewise and constant-power forms) to (speed, force) "
       "points and write it into a train file");
   cmd->add_option("--points", args->points, "CSV of points with columns speed_kmh, force_kN")
       ->required();
