@@ -1,10 +1,9 @@
-// The acceptance figure: calibration (both formulations) of one log of 10 000 rows finishes in
-// under 5 s. The log is also written to the build tree (fitting_synthetic_10000.csv) so the
-// end-to-end time of `ecorail calibrate` can be measured on it (docs/calibration.md).
+// Calibration of one long log (10 000 rows, 2 % corrupted): the fit is still right at this
+// length. The log is also written to the build tree (fitting_synthetic_10000.csv) so the
+// end-to-end time of `ecorail calibrate` can be measured on it; the speed itself is measured by
+// bench/bench_calibration.cpp (docs/calibration.md), not asserted here.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <cmath>
 #include <fstream>
 
 #include "fitting/calibration.hpp"
@@ -14,7 +13,7 @@
 namespace ecorail::fitting {
 namespace {
 
-TEST(CalibrationTiming, TenThousandRowsUnderFiveSeconds) {
+TEST(CalibrationLongLog, TenThousandRowsRecoverTheParameters) {
   SyntheticLogOptions o;
   o.rows = 10000;
   o.corrupt_fraction = 0.02;
@@ -24,14 +23,7 @@ TEST(CalibrationTiming, TenThousandRowsUnderFiveSeconds) {
     std::ofstream out(std::string(ECORAIL_BINARY_DIR) + "/fitting_synthetic_10000.csv");
     write_log_csv(log.log, out);
   }
-  const auto start = std::chrono::steady_clock::now();
   const Summary s = calibrate({log.log}, test::reference_train(), CalibrationOptions{});
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("10 000 rows: %.3f s (equation error %.3f s, output error %.3f s)\n", seconds,
-              s.results.at(0).fit.solve_time_s, s.results.at(1).fit.solve_time_s);
-  EXPECT_LT(seconds, 5.0);
-  // And the fit is still right at this length.
   const auto& oe = s.primary();
   EXPECT_NEAR(oe.params[kDavisC].value, test::truth_train().davis.C, 3.0 * oe.params[kDavisC].se);
   EXPECT_NEAR(oe.params[kRotatingMassFactor].value, 0.08, 3.0 * oe.params[kRotatingMassFactor].se);
