@@ -35,13 +35,13 @@ ValueFunction SectionEngine::sweep(double lambda) const {
 }
 
 LambdaRun SectionEngine::run(double lambda) const {
-  backward_sweep(grid_, *table_, lambda, value_);
+  const ValueFunction value = sweep(lambda);
   ExtractionSettings settings;
   settings.decision_step_m = options_.decision_step_m;
   settings.dp_step = dp_step();
   LambdaRun out;
   out.lambda = lambda;
-  out.program = extract_program(motion_, grid_, value_, options_.objective, settings);
+  out.program = extract_program(motion_, grid_, value, options_.objective, settings);
   out.sim = simulate(out.program);
   out.cost_J = energy_cost_J(out.sim);
   return out;

@@ -40,8 +40,6 @@ class SectionEngine {
   SectionEngine& operator=(const SectionEngine&) = delete;
 
   LambdaRun run(double lambda) const;
-  // Value function of the last run (for diagnostics).
-  const ValueFunction& value() const { return value_; }
   // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
   // policy tables.
   ValueFunction sweep(double lambda) const;
@@ -69,7 +67,6 @@ class SectionEngine {
   physics::Motion motion_;
   StageGrid grid_;
   std::unique_ptr<TransitionTable> table_;
-  mutable ValueFunction value_;
   double build_wall_s_ = 0.0;
 };
 

@@ -21,24 +21,8 @@ double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) 
 
 double Motion::de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const {
   const double v = speed_from_e(e);
-  const double w = train_->resistance_N(v, seg.track_N_per_kN());
-  double u = 0.0;
-  switch (c) {
-    case Control::MaxTraction:
-      u = train_->max_traction_N(v, w);
-      break;
-    case Control::Hold:
-      u = std::clamp(w, -train_->max_brake_N(v, w), train_->max_traction_N(v, w));
-      break;
-    case Control::Coast:
-      u = 0.0;
-      break;
-    case Control::MaxBrake:
-      u = -train_->max_brake_N(v, w);
-      break;
-  }
-  *force_N = u;
-  return (u - w) / train_->effective_mass_kg();
+  *force_N = applied_force_N(c, v, seg);
+  return (*force_N - train_->resistance_N(v, seg.track_N_per_kN())) / train_->effective_mass_kg();
 }
 
 namespace {
