@@ -27,8 +27,12 @@ void backward_sweep(const StageGrid& grid, const TransitionTable& table, double 
   std::uint8_t* best = value.best.data();
   // One parallel region for the whole sweep, scheduled chunk by chunk on data dependencies
   // (see stage_work.hpp).
+  // Inside another parallel region (a journey runs its sections side by side) the sweep keeps
+  // to its own thread.
   const int threads =
-      std::max(1, std::min(omp_get_max_threads(), grid.node_count(0) / kSweepChunk));
+      omp_in_parallel()
+          ? 1
+          : std::max(1, std::min(omp_get_max_threads(), grid.node_count(0) / kSweepChunk));
   StageWork work(table.dependencies(), threads);
   work.mark_stage_done(last);
 #pragma omp parallel num_threads(threads)

@@ -17,11 +17,15 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Every section's run for one lambda. Sections are independent, so they run side by side
+// (each one's sweep then runs on the thread it is given); results do not depend on which thread
+// ran which section.
 std::vector<LambdaRun> run_all(const std::vector<std::unique_ptr<SectionEngine>>& engines,
                                double lambda) {
-  std::vector<LambdaRun> runs;
-  runs.reserve(engines.size());
-  for (const auto& e : engines) runs.push_back(e->run(lambda));
+  std::vector<LambdaRun> runs(engines.size());
+  const int n = static_cast<int>(engines.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) runs[i] = engines[i]->run(lambda);
   return runs;
 }
 
@@ -143,7 +147,9 @@ JourneySolution solve_journey(const physics::Train& train,
   if (options.measure_marginals) {
     // -(dE/dT) by central difference of two fresh solves of the section alone.
     const double h = options.marginal_step_s;
-    for (std::size_t i = 0; i < out.sections.size(); ++i) {
+    const int n = static_cast<int>(out.sections.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int i = 0; i < n; ++i) {
       const double t = out.sections[i].run.sim.running_time_s;
       if (t - h < min_times[i]) continue;
       const auto slow = solve_for_time(*engines[i], t + h, options.search);
