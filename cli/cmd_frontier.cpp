@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 
 #include "cli/commands.hpp"
@@ -117,14 +118,24 @@ void run_frontier(const FrontierArgs& a) {
     sections.emplace_back(a.problem.from, a.problem.to);
   }
   const auto cache = a.cache_dir.empty() ? default_cache_dir() : std::filesystem::path(a.cache_dir);
-  std::vector<output::LabelledFrontier> frontiers;
-  for (std::size_t i = 0; i < sections.size(); ++i) {
+  // Sections are independent: with --all they are computed side by side, and the first error
+  // (if any) is reported after the loop, since exceptions may not leave an OpenMP region.
+  std::vector<output::LabelledFrontier> frontiers(sections.size());
+  std::exception_ptr failure;
+  const int n = static_cast<int>(sections.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) {
     const auto& [from, to] = sections[i];
-    if (sections.size() > 1)
-      std::fprintf(stderr, "frontier %zu/%zu: %s -> %s\n", i + 1, sections.size(), from.c_str(),
-                   to.c_str());
-    frontiers.push_back(frontier_for(p, a, from, to, cache));
+    try {
+      frontiers[i] = frontier_for(p, a, from, to, cache);
+#pragma omp critical(frontier_progress)
+      if (n > 1) std::fprintf(stderr, "frontier %s -> %s done\n", from.c_str(), to.c_str());
+    } catch (...) {
+#pragma omp critical(frontier_failure)
+      if (!failure) failure = std::current_exception();
+    }
   }
+  if (failure) std::rethrow_exception(failure);
   std::printf("%-8s %-8s %10s %8s %14s %14s %8s %7s %8s\n", "from", "to", "min_time_s", "points",
               "E(first)_kJ", "E(last)_kJ", "monotone", "convex", "wobbles");
   for (const auto& lf : frontiers) {
