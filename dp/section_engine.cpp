@@ -1,7 +1,5 @@
 #include "dp/section_engine.hpp"
 
-#include <chrono>
-
 namespace ecorail::dp {
 
 SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
@@ -12,9 +10,7 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
       envelope_(train_, route_, options.envelope_resolution_m),
       motion_(train_, route_, envelope_),
       grid_(envelope_, route_.length_m(), options.grid) {
-  const auto t0 = std::chrono::steady_clock::now();
   table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
-  build_wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program) const {

@@ -57,7 +57,6 @@ class SectionEngine {
   const physics::Motion& motion() const { return motion_; }
   const StageGrid& grid() const { return grid_; }
   const EngineOptions& options() const { return options_; }
-  double build_wall_s() const { return build_wall_s_; }
 
  private:
   physics::Train train_;
@@ -67,7 +66,6 @@ class SectionEngine {
   physics::Motion motion_;
   StageGrid grid_;
   std::unique_ptr<TransitionTable> table_;
-  double build_wall_s_ = 0.0;
 };
 
 }  // namespace ecorail::dp

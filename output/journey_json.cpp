@@ -15,13 +15,12 @@ nlohmann::json journey_json(const dp::JourneySolution& sol, const JourneyLabels&
     const auto& sec = sol.sections[i];
     const auto& sim = sec.run.sim;
     const double length = sim.trace.empty() ? 0.0 : sim.trace.back().s_m;
-    nlohmann::json j = run_json(sim);
+    nlohmann::json j = run_json(sim, sec.regimes);
     j["from"] = labels.stops[i];
     j["to"] = labels.stops[i + 1];
     j["distance_m"] = length;
     j["min_running_time_s"] = sec.min_time_s;
     j["dwell_after_s"] = sec.dwell_after_s;
-    j["regimes"] = regimes_json(sec.regimes);
     if (std::isfinite(sec.marginal_J_per_s)) {
       j["marginal_energy_kJ_per_s"] = sec.marginal_J_per_s / 1000.0;
       if (std::isfinite(sol.lambda_J_per_s)) {

@@ -21,6 +21,11 @@ nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans) {
 }
 
 nlohmann::json run_json(const physics::SimulationResult& sim) {
+  return run_json(sim, dp::regime_spans(sim.trace));
+}
+
+nlohmann::json run_json(const physics::SimulationResult& sim,
+                        const std::vector<dp::RegimeSpan>& spans) {
   return {{"traction_energy_kJ", units::J_to_kJ(sim.energy.traction_work_J)},
           {"braking_energy_kJ", units::J_to_kJ(sim.energy.brake_work_J)},
           {"regen_energy_kJ", units::J_to_kJ(sim.energy.regen_J)},
@@ -29,13 +34,12 @@ nlohmann::json run_json(const physics::SimulationResult& sim) {
           {"running_time_s", sim.running_time_s},
           {"stop_error_m", sim.stop_error_m},
           {"max_overspeed_kmh", units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms))},
-          {"regimes", regimes_json(dp::regime_spans(sim.trace))}};
+          {"regimes", regimes_json(spans)}};
 }
 
 nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   const dp::SectionSolveSummary& s = solution.summary;
-  nlohmann::json j = run_json(solution.run.sim);
-  j["regimes"] = regimes_json(solution.regimes);
+  nlohmann::json j = run_json(solution.run.sim, solution.regimes);
   j["from"] = s.from;
   j["to"] = s.to;
   j["distance_m"] = s.distance_m;

@@ -13,8 +13,11 @@
 namespace ecorail::output {
 
 nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans);
-// Energies, time, stop error and overspeed of a re-simulated run.
+// Energies, time, stop error, overspeed and regimes of a re-simulated run; the regime spans are
+// taken from the trace unless the caller already has them.
 nlohmann::json run_json(const physics::SimulationResult& sim);
+nlohmann::json run_json(const physics::SimulationResult& sim,
+                        const std::vector<dp::RegimeSpan>& spans);
 // The full report of a single-section solve.
 nlohmann::json section_solution_json(const dp::SectionSolution& solution);
 // Writes a JSON document (indented, newline-terminated) atomically.
