@@ -1,6 +1,7 @@
 // `ecorail solve`: the energy-optimal run of one section for a running time.
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 
 #include "cli/commands.hpp"
 #include "cli/journey_solve.hpp"
@@ -81,6 +82,11 @@ void run_solve(const SolveArgs& a) {
   }
   const auto& s = solution.summary;
   std::cout << (a.full_report ? s.FullReport() : s.BriefReport());
+  if (!s.IsSolutionUsable()) {
+    for (const auto& w : s.warnings) std::cout << "  warning: " << w << "\n";
+    throw std::runtime_error("the run misses its stop or its running time (see the warnings); "
+                             "no output was written");
+  }
   print_regimes(solution.regimes);
   output::Timeline timeline;
   output::append_section(timeline, solution.run.sim, p.route, 0);

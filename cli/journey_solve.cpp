@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
@@ -127,6 +128,11 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
                 sol.lambda_evaluations, sol.build_wall_s, sol.search_wall_s, sol.total_wall_s);
   }
   for (const auto& w : sol.warnings) std::printf("  warning: %s\n", w.c_str());
+  if (!sol.converged) {
+    std::fflush(stdout);
+    throw std::runtime_error(
+        "the journey misses a stop or its running time (see the warnings); no output was written");
+  }
 
   output::Timeline timeline;
   for (std::size_t i = 0; i < sol.sections.size(); ++i) {

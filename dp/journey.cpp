@@ -1,11 +1,14 @@
 #include "dp/journey.hpp"
 
 #include "dp/lambda_bracket.hpp"
+#include "dp/section_library.hpp"
+#include "dp/section_solve.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace ecorail::dp {
 
@@ -20,12 +23,13 @@ double seconds_since(Clock::time_point t0) {
 // Every section's run for one lambda. Sections are independent, so they run side by side
 // (each one's sweep then runs on the thread it is given); results do not depend on which thread
 // ran which section.
-std::vector<LambdaRun> run_all(const std::vector<std::unique_ptr<SectionEngine>>& engines,
-                               double lambda) {
+// The first section may start mid-run (a restart).
+std::vector<LambdaRun> run_all(const std::vector<const SectionEngine*>& engines, double lambda,
+                               const StartState& start) {
   std::vector<LambdaRun> runs(engines.size());
   const int n = static_cast<int>(engines.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) runs[i] = engines[i]->run(lambda);
+  for (int i = 0; i < n; ++i) runs[i] = engines[i]->run(lambda, i == 0 ? start : StartState{});
   return runs;
 }
 
@@ -36,25 +40,56 @@ double total_time(const std::vector<LambdaRun>& runs) {
 }
 
 // Optimal split: regula falsi on log(lambda) for the total time, then a trim of one section.
-void optimal_split(const std::vector<std::unique_ptr<SectionEngine>>& engines, double target,
-                   const TimeSearchOptions& opt, JourneySolution& out,
+// Where the frontiers put the price: log(lambda) and the slope of the total running time in it.
+struct PricePrediction {
+  double x = 0.0;
+  double dT_dx = 0.0;  // negative; 0: no prediction
+};
+
+void optimal_split(const std::vector<const SectionEngine*>& engines, double target,
+                   const TimeSearchOptions& opt, const StartState& start,
+                   const PricePrediction& predicted, JourneySolution& out,
                    std::vector<LambdaRun>& best) {
-  double best_err = INFINITY;
+  double best_err = INFINITY, best_x = std::log(opt.lambda_guess);
   auto evaluate = [&](double x) {
-    std::vector<LambdaRun> runs = run_all(engines, std::exp(x));
+    std::vector<LambdaRun> runs = run_all(engines, std::exp(x), start);
     ++out.lambda_evaluations;
     const double f = total_time(runs) - target;
     if (std::abs(f) < best_err) {
       best_err = std::abs(f);
+      best_x = x;
       best = std::move(runs);
       out.lambda_J_per_s = std::exp(x);
     }
     return f;
   };
-  LambdaBracket bracket(evaluate, std::log(opt.lambda_guess), std::log(opt.bracket_factor),
-                        opt.max_iterations);
-  const double coarse = opt.trim ? opt.lambda_tolerance_s : opt.tolerance_s;
-  bracket.narrow([&] { return best_err <= coarse; });
+  double coarse = opt.trim ? opt.lambda_tolerance_s : opt.tolerance_s;
+  if (predicted.dT_dx < 0.0) {
+    // Newton from the frontiers' price and slope, then secant steps on the measured times. The
+    // total time of many sections is ragged in lambda by a few tenths of a second (each
+    // section's grid), below which lambda steps chase noise; so from a prediction the search
+    // hands over to the trim at kWarmTolerance_s: the trim moves one switch point along its
+    // frontier, a first-order neutral move whose cost is second order in the gap.
+    constexpr double kWarmTolerance_s = 0.5;
+    if (opt.trim) coarse = std::max(coarse, kWarmTolerance_s);
+    double x0 = predicted.x, f0 = evaluate(x0), slope = predicted.dT_dx;
+    for (int k = 0; k < 3 && std::abs(f0) > coarse; ++k) {
+      const double x1 = x0 - f0 / slope;
+      const double f1 = evaluate(x1);
+      if (f1 != f0 && (f1 - f0) / (x1 - x0) < 0.0) slope = (f1 - f0) / (x1 - x0);
+      x0 = x1, f0 = f1;
+    }
+  }
+  std::optional<LambdaBracket> bracket;
+  auto narrow = [&](double tolerance) {
+    if (!bracket) {
+      const bool warm = predicted.dT_dx < 0.0;
+      bracket.emplace(evaluate, warm ? best_x : std::log(opt.lambda_guess),
+                      std::log(warm ? 1.03 : opt.bracket_factor), opt.max_iterations);
+    }
+    bracket->narrow([&] { return best_err <= tolerance; });
+  };
+  if (best_err > coarse) narrow(coarse);
   // Close the rest on one section, the longest-running first (it has the most room to move);
   // if no section can, narrow lambda to the fine tolerance instead.
   if (best_err <= opt.tolerance_s) {
@@ -76,8 +111,40 @@ void optimal_split(const std::vector<std::unique_ptr<SectionEngine>>& engines, d
       return;
     }
   }
-  bracket.narrow([&] { return best_err <= opt.tolerance_s; });
+  narrow(opt.tolerance_s);
   out.converged = best_err <= opt.tolerance_s;
+}
+
+// The common price at which the sections' frontiers add up to the total running time, and the
+// slope of that total in log(lambda), when the library holds every frontier already (asking
+// never computes one) and the journey starts at rest; no prediction otherwise. Only a starting
+// point for the search on re-simulated runs.
+PricePrediction price_from_frontiers(const SectionLibrary& library, std::size_t first,
+                                     std::size_t last, double total_time_s,
+                                     const JourneyOptions& options) {
+  if (!options.use_frontiers || !options.start.at_departure()) return {};
+  for (std::size_t i = first; i < last; ++i) {
+    if (!library.has_frontier(i)) return {};
+  }
+  auto total_at = [&](double x) {
+    double t = 0.0;
+    for (std::size_t i = first; i < last; ++i) {
+      t += library.frontier(i).time_for_marginal(std::exp(x));
+    }
+    return t;
+  };
+  double lo = 0.0, hi = std::log(1e12);  // total time falls as the price rises
+  if (total_at(lo) < total_time_s || total_at(hi) > total_time_s) return {};  // off the curves
+  for (int k = 0; k < 100 && hi - lo > 1e-9; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (total_at(mid) > total_time_s ? lo : hi) = mid;
+  }
+  PricePrediction p;
+  p.x = 0.5 * (lo + hi);
+  constexpr double h = 0.02;
+  p.dT_dx = (total_at(p.x + h) - total_at(p.x - h)) / (2.0 * h);
+  if (!(p.dT_dx < 0.0)) return {};
+  return p;
 }
 
 }  // namespace
@@ -86,17 +153,36 @@ JourneySolution solve_journey(const physics::Train& train,
                               const std::vector<physics::Route>& routes,
                               const std::vector<double>& dwells_s, double total_time_s,
                               const JourneyOptions& options) {
+  SectionLibraryOptions lo;
+  lo.engine = options.engine;
+  lo.search = options.search;
+  const SectionLibrary library(train, routes, lo);
+  return solve_journey(library, 0, library.size(), dwells_s, total_time_s, options);
+}
+
+JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, std::size_t last,
+                              const std::vector<double>& dwells_s, double total_time_s,
+                              const JourneyOptions& options) {
   const auto t0 = Clock::now();
+  if (!(first < last && last <= library.size())) {
+    throw std::invalid_argument("a journey needs sections [first, last) of the library");
+  }
   JourneySolution out;
   out.target_time_s = total_time_s;
-  std::vector<std::unique_ptr<SectionEngine>> engines;
+  library.build_engines(first, last);  // only those not built yet
+  std::vector<const SectionEngine*> engines;
+  std::vector<physics::Route> routes;
   double min_total = 0.0, length = 0.0;
-  std::vector<double> min_times;
-  for (const auto& route : routes) {
-    engines.push_back(std::make_unique<SectionEngine>(train, route, options.engine));
-    min_times.push_back(engines.back()->min_time_run().running_time_s);
+  std::vector<double> min_times, remaining_m;
+  for (std::size_t i = first; i < last; ++i) {
+    engines.push_back(&library.engine(i));
+    routes.push_back(library.route(i));
+    const bool restart = i == first && !options.start.at_departure();
+    min_times.push_back(restart ? library.engine(i).min_time_run(options.start).running_time_s
+                                : library.min_time_s(i));
     min_total += min_times.back();
-    length += route.length_m();
+    remaining_m.push_back(routes.back().length_m() - (restart ? options.start.position_m : 0.0));
+    length += remaining_m.back();
   }
   out.build_wall_s = seconds_since(t0);
   if (total_time_s < min_total - options.search.tolerance_s) {
@@ -106,12 +192,14 @@ JourneySolution solve_journey(const physics::Train& train,
   const auto t1 = Clock::now();
   std::vector<LambdaRun> runs;
   if (options.split == Split::Optimal) {
-    optimal_split(engines, total_time_s, options.search, out, runs);
+    const PricePrediction predicted =
+        price_from_frontiers(library, first, last, total_time_s, options);
+    optimal_split(engines, total_time_s, options.search, options.start, predicted, out, runs);
   } else {
     out.lambda_J_per_s = NAN;
     out.converged = true;
     for (std::size_t i = 0; i < engines.size(); ++i) {
-      const double share = total_time_s * routes[i].length_m() / length;
+      const double share = total_time_s * remaining_m[i] / length;
       if (share < min_times[i]) {
         char msg[300];
         std::snprintf(msg, sizeof msg,
@@ -121,7 +209,8 @@ JourneySolution solve_journey(const physics::Train& train,
                       min_times[i]);
         throw std::invalid_argument(msg);
       }
-      TimeSearchResult r = solve_for_time(*engines[i], share, options.search);
+      TimeSearchResult r = solve_for_time(*engines[i], share, options.search,
+                                          i == 0 ? options.start : StartState{});
       out.lambda_evaluations += r.iterations;
       out.converged = out.converged && r.converged;
       runs.push_back(std::move(r.run));
@@ -152,19 +241,60 @@ JourneySolution solve_journey(const physics::Train& train,
     for (int i = 0; i < n; ++i) {
       const double t = out.sections[i].run.sim.running_time_s;
       if (t - h < min_times[i]) continue;
-      const auto slow = solve_for_time(*engines[i], t + h, options.search);
-      const auto fast = solve_for_time(*engines[i], t - h, options.search);
+      const StartState start = i == 0 ? options.start : StartState{};
+      const auto slow = solve_for_time(*engines[i], t + h, options.search, start);
+      const auto fast = solve_for_time(*engines[i], t - h, options.search, start);
       out.sections[i].marginal_J_per_s =
           (engines[i]->energy_cost_J(fast.run.sim) - engines[i]->energy_cost_J(slow.run.sim)) /
           (slow.run.sim.running_time_s - fast.run.sim.running_time_s);
     }
   }
-  if (!out.converged) {
+  // Every section must come to rest at its stop: a journey with one that does not is never a
+  // converged result.
+  const bool time_met = out.converged;
+  for (std::size_t i = 0; i < out.sections.size(); ++i) {
+    const physics::SimulationResult& sim = out.sections[i].run.sim;
+    if (!run_meets_targets(sim, 0.0)) {
+      out.converged = false;
+      char msg[200];
+      std::snprintf(msg, sizeof msg, "section %s -> %s misses its stop by %.2f m",
+                    routes[i].from_name().c_str(), routes[i].to_name().c_str(), sim.stop_error_m);
+      out.warnings.push_back(msg);
+    }
+  }
+  if (!time_met) {
     out.warnings.push_back("total running time not met to " +
                            std::to_string(options.search.tolerance_s) + " s");
   }
   out.total_wall_s = seconds_since(t0);
   return out;
+}
+
+JourneySolution solve_journey_free_dwells(const SectionLibrary& library, std::size_t first,
+                                          std::size_t last, const std::vector<DwellRange>& dwells,
+                                          double trip_time_s, const JourneyOptions& options) {
+  if (!(first < last && last <= library.size()) || dwells.size() + 1 != last - first) {
+    throw std::invalid_argument("free dwells need one dwell range per intermediate stop");
+  }
+  std::vector<double> chosen;
+  double dwell_total = 0.0;
+  for (const DwellRange& d : dwells) {
+    if (!(d.min_s >= 0.0 && d.max_s >= d.min_s && std::isfinite(d.max_s))) {
+      throw std::invalid_argument("a dwell range needs 0 <= min <= max, finite");
+    }
+    chosen.push_back(d.min_s);  // see the header: the optimum takes every minimum
+    dwell_total += d.min_s;
+  }
+  double min_running = 0.0;
+  for (std::size_t i = first; i < last; ++i) {
+    const bool restart = i == first && !options.start.at_departure();
+    min_running += restart ? library.engine(i).min_time_run(options.start).running_time_s
+                           : library.min_time_s(i);
+  }
+  if (trip_time_s < min_running + dwell_total - options.search.tolerance_s) {
+    throw InfeasibleTimeError(trip_time_s, min_running + dwell_total);
+  }
+  return solve_journey(library, first, last, chosen, trip_time_s - dwell_total, options);
 }
 
 }  // namespace ecorail::dp

@@ -13,6 +13,7 @@
 
 #include "dp/regimes.hpp"
 #include "dp/section_engine.hpp"
+#include "dp/section_library.hpp"
 #include "dp/time_target.hpp"
 
 namespace ecorail::dp {
@@ -26,6 +27,13 @@ struct JourneyOptions {
   // Measure each section's marginal energy per second by re-solving it at +-0.5 s.
   bool measure_marginals = true;
   double marginal_step_s = 0.5;
+  // On a library that already holds every section's frontier, start the price search where the
+  // frontiers say the price lies (fewer evaluations; the result is still searched on
+  // re-simulated runs).
+  bool use_frontiers = true;
+  // Where the train is in the first section (a restart mid-run): the journey is then the rest
+  // of the run, and total_time_s the running time that remains.
+  StartState start;
 };
 
 struct JourneySection {
@@ -54,8 +62,31 @@ struct JourneySolution {
 };
 
 // Solves a journey over `routes` (consecutive sections) with `dwells_s[i]` after section i.
+// Builds a section library for the routes and solves on it.
 JourneySolution solve_journey(const physics::Train& train,
                               const std::vector<physics::Route>& routes,
+                              const std::vector<double>& dwells_s, double total_time_s,
+                              const JourneyOptions& options);
+
+// A stop's dwell left free within [min_s, max_s].
+struct DwellRange {
+  double min_s = 0.0;
+  double max_s = 0.0;
+};
+
+// Free dwells: the trip time (running times plus dwells) is fixed and each dwell may lie in its
+// range; the optimum decides running times and dwells together. With no other coupling a
+// second of dwell is a second less of running, and energy falls with running time, so every
+// dwell goes to its minimum: the journey is solved with the minimum dwells and the running time
+// that leaves. (Timetable couplings, such as regenerated energy shared between trains, are what
+// make longer dwells worth having; they live in timetable/.)
+JourneySolution solve_journey_free_dwells(const SectionLibrary& library, std::size_t first,
+                                          std::size_t last, const std::vector<DwellRange>& dwells,
+                                          double trip_time_s, const JourneyOptions& options);
+
+// The same over sections [first, last) of a library: engines already built are reused, so a
+// second journey on the same library builds nothing.
+JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, std::size_t last,
                               const std::vector<double>& dwells_s, double total_time_s,
                               const JourneyOptions& options);
 

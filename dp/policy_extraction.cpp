@@ -56,10 +56,12 @@ physics::ControlProgram extract_program(const physics::Motion& motion, const Sta
   const double length = motion.route().length_m();
 
   physics::ControlProgram program;
-  double s = 0.0;
-  double e = 0.0;
+  double s = settings.start_position_m;
+  double e = 0.5 * settings.start_speed_ms * settings.start_speed_ms;
+  // From rest at the start, the sweep's own choice; mid-run, the look-ahead's.
   Control current = static_cast<Control>(value.best[grid.offset(0)]);
-  program.push_back({0.0, current});
+  if (s > 0.0 || e > 0.0) current = scorer.best(s, e, current);
+  program.push_back({s, current});
   while (s < length - 1e-9) {
     const double next = std::min(length, s + settings.decision_step_m);
     const physics::Advance adv = motion.advance(s, e, next, current, fine);

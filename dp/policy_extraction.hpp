@@ -25,6 +25,9 @@ struct ExtractionSettings {
   // neighbouring switch points that the running-time trim moves.
   double min_entry_m = 1.0;
   physics::StepSettings dp_step;  // the same integration as the transition table
+  // Where the train is when the program starts (a restart mid-run); at rest at 0 by default.
+  double start_position_m = 0.0;
+  double start_speed_ms = 0.0;
 };
 
 // Drops entries shorter than min_entry_m and merges repeated controls.

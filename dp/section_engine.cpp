@@ -13,9 +13,12 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
   table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
 }
 
-physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program) const {
+physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program,
+                                                  const StartState& start) const {
   physics::SimulationOptions opt;
   opt.step_m = options_.resim_step_m;
+  opt.start_position_m = start.position_m;
+  opt.start_speed_ms = start.speed_ms;
   return physics::simulate(motion_, program, opt);
 }
 
@@ -30,21 +33,24 @@ ValueFunction SectionEngine::sweep(double lambda) const {
   return value;
 }
 
-LambdaRun SectionEngine::run(double lambda) const {
+LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
   const ValueFunction value = sweep(lambda);
   ExtractionSettings settings;
+  settings.start_position_m = start.position_m;
+  settings.start_speed_ms = start.speed_ms;
   settings.decision_step_m = options_.decision_step_m;
   settings.dp_step = dp_step();
   LambdaRun out;
   out.lambda = lambda;
+  out.start = start;
   out.program = extract_program(motion_, grid_, value, options_.objective, settings);
-  out.sim = simulate(out.program);
+  out.sim = simulate(out.program, start);
   out.cost_J = energy_cost_J(out.sim);
   return out;
 }
 
-physics::SimulationResult SectionEngine::min_time_run() const {
-  return simulate({{0.0, physics::Control::MaxTraction}});
+physics::SimulationResult SectionEngine::min_time_run(const StartState& start) const {
+  return simulate({{start.position_m, physics::Control::MaxTraction}}, start);
 }
 
 }  // namespace ecorail::dp

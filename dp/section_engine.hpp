@@ -25,8 +25,17 @@ struct EngineOptions {
   double decision_step_m = 1.0;  // policy extraction
 };
 
+// Where a run starts: at rest at the departure stop, or mid-run (a restart) at a position and
+// speed of the section.
+struct StartState {
+  double position_m = 0.0;
+  double speed_ms = 0.0;
+  bool at_departure() const { return position_m <= 0.0 && speed_ms <= 0.0; }
+};
+
 struct LambdaRun {
   double lambda = 0.0;
+  StartState start;
   physics::ControlProgram program;
   physics::SimulationResult sim;
   double cost_J = 0.0;  // energy cost by the objective, from the re-simulation
@@ -39,7 +48,7 @@ class SectionEngine {
   SectionEngine(const SectionEngine&) = delete;
   SectionEngine& operator=(const SectionEngine&) = delete;
 
-  LambdaRun run(double lambda) const;
+  LambdaRun run(double lambda, const StartState& start = {}) const;
   // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
   // policy tables.
   ValueFunction sweep(double lambda) const;
@@ -48,8 +57,9 @@ class SectionEngine {
   // The integration settings of the DP transitions (to score controls consistently).
   physics::StepSettings dp_step() const { return {options_.grid.substep_m, 2}; }
   // Flat-out run: full traction, held on the envelope, braking for the stop.
-  physics::SimulationResult min_time_run() const;
-  physics::SimulationResult simulate(const physics::ControlProgram& program) const;
+  physics::SimulationResult min_time_run(const StartState& start = {}) const;
+  physics::SimulationResult simulate(const physics::ControlProgram& program,
+                                     const StartState& start = {}) const;
   double energy_cost_J(const physics::SimulationResult& sim) const;
 
   const physics::Train& train() const { return train_; }

@@ -11,6 +11,11 @@
 
 namespace ecorail::dp {
 
+bool run_meets_targets(const physics::SimulationResult& sim, double target_time_s) {
+  return !sim.stopped_early && std::abs(sim.stop_error_m) <= kStopTolerance_m &&
+         (target_time_s <= 0.0 || std::abs(sim.running_time_s - target_time_s) <= kTimeTolerance_s);
+}
+
 void summarise_run(const physics::SimulationResult& sim, double target_time_s,
                    SectionSolveSummary& s) {
   s.running_time_s = sim.running_time_s;
@@ -68,6 +73,9 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.search_wall_s = std::chrono::duration<double>(t2 - t1).count();
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
   summarise_run(out.run.sim, target_time_s, s);
+  // A run that misses its stop or its time is never a converged result, whatever the search
+  // reported (see SectionSolveSummary::IsSolutionUsable).
+  if (!run_meets_targets(out.run.sim, target_time_s)) s.converged = false;
   if (!found.converged) {
     s.warnings.push_back(
         format_text("running-time search did not converge to %.3f s", options.search.tolerance_s));

@@ -47,6 +47,8 @@ struct SectionSolveSummary {
 
   std::string BriefReport() const;
   std::string FullReport() const;
+  // False when the run misses its stop or its time: such a run must not be written as a result.
+  bool IsSolutionUsable() const { return converged; }
 };
 
 struct SectionSolution {
@@ -57,6 +59,12 @@ struct SectionSolution {
 
 SectionSolution solve_section(const physics::Train& train, const physics::Route& route,
                               double target_time_s, const SectionSolveOptions& options);
+
+// What a result must meet: it comes to rest at the stop (within kStopTolerance_m) and, for a
+// target time, runs within kTimeTolerance_s of it.
+inline constexpr double kStopTolerance_m = 0.5;
+inline constexpr double kTimeTolerance_s = 0.1;
+bool run_meets_targets(const physics::SimulationResult& sim, double target_time_s);
 
 // Fills the result part of a summary (energies, time, stop, overspeed, warnings) from a run.
 void summarise_run(const physics::SimulationResult& sim, double target_time_s,

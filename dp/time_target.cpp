@@ -24,15 +24,19 @@ InfeasibleTimeError::InfeasibleTimeError(double requested_s, double minimum_s)
     : std::invalid_argument(infeasible_message(requested_s, minimum_s)), minimum_s_(minimum_s) {}
 
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
-                                const TimeSearchOptions& options) {
-  const double t_min = engine.min_time_run().running_time_s;
+                                const TimeSearchOptions& options, const StartState& start) {
+  const physics::SimulationResult flat_out = engine.min_time_run(start);
+  if (flat_out.stopped_early) {
+    throw std::invalid_argument("the train cannot reach the end of the section from this state");
+  }
+  const double t_min = flat_out.running_time_s;
   if (target < t_min - options.tolerance_s) throw InfeasibleTimeError(target, t_min);
 
   TimeSearchResult out;
   bool have_best = false;
   auto error_of_best = [&] { return std::abs(out.run.sim.running_time_s - target); };
   auto evaluate = [&](double x) {
-    LambdaRun run = engine.run(std::exp(x));
+    LambdaRun run = engine.run(std::exp(x), start);
     ++out.iterations;
     const double f = run.sim.running_time_s - target;
     if (!have_best || std::abs(f) < error_of_best()) {
@@ -90,7 +94,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     if (program[k].from_m + kProbe_m >= hi) continue;
     physics::ControlProgram probe = program;
     probe[k].from_m += kProbe_m;
-    const double slope = (error(engine.simulate(probe)) - error(run.sim)) / kProbe_m;
+    const double slope = (error(engine.simulate(probe, run.start)) - error(run.sim)) / kProbe_m;
     ++result.trim_iterations;
     if (slope < 0.0) candidates.push_back({k, slope});
   }
@@ -107,7 +111,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
                         physics::SimulationResult* sim_out) {
       physics::ControlProgram trial = program;
       trial[k].from_m = x;
-      physics::SimulationResult sim = engine.simulate(trial);
+      physics::SimulationResult sim = engine.simulate(trial, run.start);
       ++result.trim_iterations;
       const double f = error(sim);
       *trial_out = std::move(trial);

@@ -49,7 +49,9 @@ struct TimeSearchResult {
 bool trim_to_time(const SectionEngine& engine, double target_time_s, double tolerance_s,
                   TimeSearchResult& result);
 
+// From rest at the departure, or (start given) for the rest of the section from a mid-run state
+// in the remaining running time target_time_s.
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target_time_s,
-                                const TimeSearchOptions& options);
+                                const TimeSearchOptions& options, const StartState& start = {});
 
 }  // namespace ecorail::dp

@@ -38,7 +38,8 @@ Regime classify(double u, double max_traction, double max_brake) {
 
 }  // namespace
 
-Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order) const {
+Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order,
+                        double e_cap_end) const {
   const RouteSegment& seg = route_->at(s_m);
   Substep out;
   double u1, u2, u3, u4;
@@ -68,7 +69,7 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
     out.time_s = v0 > 0.0 ? 2.0 * out.length_m / v0 : 0.0;
     work *= frac;
   } else {
-    const double e_env = envelope_->e_at(s_m + h);
+    const double e_env = std::min(envelope_->e_at(s_m + h), e_cap_end);
     if (e1 > e_env) {
       // Leaving the envelope: apply the constant force that lands on it, but no more braking
       // than the train has.

@@ -51,7 +51,11 @@ class Motion {
       : train_(&train), route_(&route), envelope_(&envelope) {}
 
   // One substep of length h from (s, e) on the segment holding s; h must not cross a segment end.
-  Substep substep(double s_m, double e, double h_m, Control c, int rk_order) const;
+  // e_cap_end (J/kg) is a further limit on the end state besides the speed envelope, e.g. a
+  // moving speed cap evaluated where and when the substep ends; it is supervised like the
+  // envelope (the force is reduced, down to full braking, so the train lands on it).
+  Substep substep(double s_m, double e, double h_m, Control c, int rk_order,
+                  double e_cap_end = std::numeric_limits<double>::infinity()) const;
   // Advances from s0 to s1 with control c, splitting at route changes and max_substep.
   Advance advance(double s0_m, double e0, double s1_m, Control c, const StepSettings& st) const;
 

@@ -5,6 +5,10 @@
 
 namespace ecorail::physics {
 
+namespace {
+constexpr double kCreep_ms = 0.01;
+}  // namespace
+
 SimulationResult simulate(const Motion& motion, const ControlLaw& law,
                           const std::vector<double>& breakpoints_m, const SimulationOptions& opt) {
   const Route& route = motion.route();
@@ -29,7 +33,37 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     if (length - next < 1e-6) next = length;  // no sliver step at the end
     const double v0 = speed_from_e(e);
     const Control c = law(s, v0);
-    const Substep sub = motion.substep(s, e, next - s, c, opt.rk_order);
+    Substep sub;
+    bool capped = false;
+    if (opt.speed_cap) {
+      // The cap is taken where and when the step ends: first at the end time the step would
+      // have uncapped, then once more at the end time of the capped step.
+      sub = motion.substep(s, e, next - s, c, opt.rk_order);
+      for (int pass = 0; pass < 2; ++pass) {
+        // A cap below a creeping speed counts as zero: landing at 3e-5 m/s would take hours
+        // to cover the next step, which is standing, not running.
+        double cap = opt.speed_cap(opt.start_clock_s + t + sub.time_s, next);
+        if (cap < kCreep_ms) cap = 0.0;
+        const double e_cap = cap < std::numeric_limits<double>::infinity() ? 0.5 * cap * cap : cap;
+        if (!(sub.e_end > e_cap)) break;
+        capped = true;
+        sub = motion.substep(s, e, next - s, c, opt.rk_order, e_cap);
+      }
+      const bool held = sub.stopped && sub.length_m <= 0.0;
+      if (held) {
+        // Held at rest by the cap: wait, the clock running, until it lifts.
+        const double cap_here = opt.speed_cap(opt.start_clock_s + t, next);
+        const double e_free = std::max(0.0, motion.substep(s, e, next - s, c, opt.rk_order).e_end);
+        if (e_free > 0.0 && cap_here < kCreep_ms && out.cap_wait_s < opt.max_wait_s) {
+          t += opt.wait_step_s;
+          out.cap_wait_s += opt.wait_step_s;
+          out.trace.push_back({t, s, 0.0, 0.0, 0.0, Regime::PartialBrake});
+          continue;
+        }
+      }
+    } else {
+      sub = motion.substep(s, e, next - s, c, opt.rk_order);
+    }
     out.energy.add(sub.traction_work_J, sub.brake_work_J, train.traction_efficiency,
                    train.regen_efficiency);
     t += sub.time_s;
@@ -40,6 +74,11 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     out.trace.push_back({t, s, v1, accel, sub.mean_force_N, sub.regime});
     out.max_overspeed_ms =
         std::max(out.max_overspeed_ms, v1 - motion.envelope().static_limit_ms(s));
+    if (opt.speed_cap) {
+      out.max_cap_overspeed_ms =
+          std::max(out.max_cap_overspeed_ms, v1 - opt.speed_cap(opt.start_clock_s + t, s));
+      if (capped) out.cap_binding_m += sub.length_m;
+    }
     if (sub.stopped) {
       out.stopped_early = s < length - 1e-3;
       break;

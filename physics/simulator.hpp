@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "physics/control.hpp"
@@ -32,11 +33,26 @@ using ControlProgram = std::vector<ProgramStep>;
 // A feedback law: the control to apply at position s and speed v.
 using ControlLaw = std::function<Control(double s_m, double v_ms)>;
 
+// A moving speed cap: the highest speed allowed at clock time t and position s (route
+// coordinates), in addition to the line's static limits; +infinity where it does not bind. The
+// separation behind a train ahead, v <= sqrt(2 L b), is one. The simulator supervises it as it
+// supervises the speed envelope: when the control would end a step above the cap, the force is
+// reduced (down to full braking) so the train lands on it, and it follows the cap while the cap
+// binds. The cap must be one the train can follow with its braking (a braking curve no steeper
+// than the train's own, as sqrt(2 L b) is when b does not exceed the train's braking
+// deceleration); where it is not, the excess is measured and reported, never hidden. A cap of
+// zero holds a standing train: it waits, the clock running, until the cap lifts.
+using SpeedCap = std::function<double(double t_s, double s_m)>;
+
 struct SimulationOptions {
   double step_m = 0.05;
   int rk_order = 4;
   double start_speed_ms = 0.0;
   double start_position_m = 0.0;
+  SpeedCap speed_cap;          // empty: none
+  double start_clock_s = 0.0;  // clock time of the start (the cap's time axis)
+  double wait_step_s = 0.5;    // while held at rest by the cap
+  double max_wait_s = 3600.0;  // held longer than this: the run ends there (stopped_early)
 };
 
 struct SimulationResult {
@@ -48,6 +64,11 @@ struct SimulationResult {
   double stop_error_m = 0.0;      // end position minus route length
   double max_overspeed_ms = 0.0;  // largest excess over the line's static limit
   bool stopped_early = false;     // came to rest before the end of the route
+  // With a moving speed cap: the largest excess over it (<= 0 when respected), the distance
+  // over which it bound, and the time spent held at rest by it.
+  double max_cap_overspeed_ms = -std::numeric_limits<double>::infinity();
+  double cap_binding_m = 0.0;
+  double cap_wait_s = 0.0;
 };
 
 // Runs a feedback law; the law is queried once per step and steps end at each breakpoint.
