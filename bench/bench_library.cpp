@@ -1,18 +1,25 @@
 // Speed of the section library on the reference line: building every section's engine (cold),
-// the full-line journey A1 -> A14 in 1726 s (30 s dwells) on a library already built (against
-// the same journey built from scratch, as `ecorail solve` does it, in the same run), frontiers
-// served from a store, and binning one trip's power at 0.01 s. 2 threads unless stated.
-// Run: build/bench/bench_library --benchmark_min_time=1
+// the whole library of 13 sections with their default frontiers (60 s span, 1 s step) cold and
+// again from the file cache (output::FileFrontierStore in a temporary directory), the full-line
+// journey A1 -> A14 in 1726 s (30 s dwells) on a library already built (against the same journey
+// built from scratch, as `ecorail solve` does it, in the same run), frontiers served from a
+// store, and binning one trip's power at 0.01 s. 2 threads (EngineOptions::threads) unless
+// stated. Run: build/bench/bench_library --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <unistd.h>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
+#include <string>
 
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "dp/journey.hpp"
 #include "dp/section_library.hpp"
+#include "output/frontier_cache.hpp"
 
 namespace {
 
@@ -44,6 +51,61 @@ void BM_LibraryBuildAllEngines(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_LibraryBuildAllEngines)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// The whole library, cold: every engine and every default frontier, each frontier written to
+// the file cache (a fresh directory per iteration, so nothing is read back).
+// Google Benchmark may call a benchmark function more than once (to size its iterations), so
+// the directory is removed when the program ends, not when a function returns.
+std::filesystem::path bench_cache_dir() {
+  static const std::filesystem::path dir = [] {
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(std::filesystem::temp_directory_path() /
+                                      ("ecorail-bench-frontiers-" + std::to_string(::getpid())),
+                                  ec);
+    });
+    return std::filesystem::temp_directory_path() /
+           ("ecorail-bench-frontiers-" + std::to_string(::getpid()));
+  }();
+  return dir;
+}
+
+dp::SectionLibraryOptions two_threads() {
+  dp::SectionLibraryOptions o;
+  o.engine.threads = 2;
+  return o;
+}
+
+void BM_LibraryBuildAllFrontiersCold(benchmark::State& state) {
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::filesystem::remove_all(bench_cache_dir());
+    output::FileFrontierStore cache(bench_cache_dir());
+    state.ResumeTiming();
+    const dp::SectionLibrary library(line().train, line().routes, two_threads());
+    library.build_frontiers(0, library.size(), &cache);
+    state.counters["frontier_computations"] = library.frontier_computations();
+  }
+}
+BENCHMARK(BM_LibraryBuildAllFrontiersCold)->Iterations(1)->Unit(benchmark::kSecond);
+
+// The same library from the cache the cold build wrote: engines are not built at all (a frontier
+// read back needs none), every frontier is read and checked.
+void BM_LibraryBuildAllFrontiersFromFileCache(benchmark::State& state) {
+  output::FileFrontierStore cache(bench_cache_dir());
+  {
+    const dp::SectionLibrary fill(line().train, line().routes, two_threads());
+    fill.build_frontiers(0, fill.size(), &cache);  // a no-op read when the cold run wrote it
+  }
+  for (auto _ : state) {
+    const dp::SectionLibrary library(line().train, line().routes, two_threads());
+    library.build_frontiers(0, library.size(), &cache);
+    if (library.frontier_computations() != 0) state.SkipWithError("a frontier was recomputed");
+    state.counters["frontier_loads"] = library.frontier_loads();
+    state.counters["engine_builds"] = library.engine_builds();
+  }
+}
+BENCHMARK(BM_LibraryBuildAllFrontiersFromFileCache)->Unit(benchmark::kMillisecond);
 
 dp::JourneyOptions journey_options() {
   dp::JourneyOptions o;

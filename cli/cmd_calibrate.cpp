@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/output_options.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
@@ -33,6 +34,7 @@ struct CalibrateArgs {
   std::string loss = "cauchy";
   double loss_scale = 2.5;
   int segment_rows = 10;
+  int max_iterations = 100;
   int threads = 1;
   bool brief = false;
   bool no_accel_limits = false;
@@ -40,6 +42,11 @@ struct CalibrateArgs {
 
 void run_calibrate(const CalibrateArgs& a) {
   using namespace fitting;
+  // Before the fit, which can take minutes: a bad --out or --json is known now.
+  check_output_targets({{"--out", a.out, false}, {"--json", a.json, false}});
+  // With an output on standard output ("-") the report goes to standard error.
+  std::ostream& report =
+      data::is_stdout_path(a.out) || data::is_stdout_path(a.json) ? std::cerr : std::cout;
   CalibrationOptions o;
   o.method = a.method == "equation" ? Method::EquationError
              : a.method == "output" ? Method::OutputError
@@ -70,6 +77,10 @@ void run_calibrate(const CalibrateArgs& a) {
     throw data::InputError("command line", 0, "--segment-rows", "at least 1 row per segment");
   }
   o.output_error.segment_rows = a.segment_rows;
+  if (a.max_iterations < 1) {
+    throw data::InputError("command line", 0, "--max-iterations", "at least 1 iteration");
+  }
+  o.max_iterations = a.max_iterations;
   o.num_threads = std::max(1, a.threads);
   o.apply_accel_limits = !a.no_accel_limits;
 
@@ -77,17 +88,32 @@ void run_calibrate(const CalibrateArgs& a) {
   std::vector<Log> logs;
   for (const auto& path : a.logs) logs.push_back(read_log(path));
   const Summary s = calibrate(logs, base, o);
-  std::cout << (a.brief ? s.BriefReport() : s.FullReport());
+  report << (a.brief ? s.BriefReport() : s.FullReport());
+  // The report above shows how the fit ended; a result that did not converge is an error and
+  // neither the train nor the JSON record is written.
+  const FormulationSummary* converged = nullptr;
+  try {
+    converged = &s.converged_primary();
+  } catch (const NotConvergedError& e) {
+    throw NotConvergedError(std::string(e.what()) + " (raise --max-iterations, now " +
+                            std::to_string(a.max_iterations) + ", or add logs)");
+  }
+  const FormulationSummary& result = *converged;
 
+  data::OutputBatch batch;  // both files or neither
   if (!a.out.empty()) {
-    data::save_train(calibrated_train(base, s.primary()), a.out);
-    std::cout << "wrote " << a.out << " (" << method_name(s.primary().method) << " estimate)\n";
+    const std::string toml = data::train_to_toml(calibrated_train(base, result));
+    batch.add(a.out, [&](std::ostream& out) { out << toml; });
   }
   if (!a.json.empty()) {
     const nlohmann::json j = calibration_to_json(s);
-    output::write_json(a.json, j);
-    std::cout << "wrote " << a.json << "\n";
+    batch.add(a.json, [&](std::ostream& out) { output::write_json(out, j); });
   }
+  batch.commit();
+  if (!a.out.empty()) {
+    report << "wrote " << a.out << " (" << method_name(result.method) << " estimate)\n";
+  }
+  if (!a.json.empty()) report << "wrote " << a.json << "\n";
 }
 
 }  // namespace
@@ -124,6 +150,9 @@ void add_calibrate_command(CLI::App& app) {
                   "robust loss scale in noise standard deviations (default 2.5)");
   cmd->add_option("--segment-rows", args->segment_rows,
                   "rows per multiple-shooting segment of the output-error fit (default 10)");
+  cmd->add_option("--max-iterations", args->max_iterations,
+                  "Ceres iterations per fit (default 100); a fit that ends without convergence "
+                  "is an error and nothing is written");
   cmd->add_option("--threads", args->threads, "threads for Ceres (default 1)");
   cmd->add_flag("--brief", args->brief, "print the one-line report only");
   cmd->add_flag("--no-accel-limits", args->no_accel_limits,

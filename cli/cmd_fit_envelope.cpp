@@ -3,9 +3,11 @@
 // criteria, and writes the chosen form into a train file the engine reads (docs/calibration.md).
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/output_options.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
@@ -30,6 +32,10 @@ struct FitEnvelopeArgs {
 
 void run_fit_envelope(const FitEnvelopeArgs& a) {
   using namespace fitting;
+  check_output_targets({{"--out", a.out, false}, {"--json", a.json, false}});
+  // With an output on standard output ("-") the report goes to standard error.
+  std::ostream& report =
+      data::is_stdout_path(a.out) || data::is_stdout_path(a.json) ? std::cerr : std::cout;
   const EnvelopeKind kind = a.kind == "braking" ? EnvelopeKind::Braking : EnvelopeKind::Traction;
   const physics::Train base = a.train.empty() ? data::default_train() : data::load_train(a.train);
   const std::vector<EnvelopePoint> points = read_envelope_points(a.points);
@@ -40,27 +46,35 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
   const EnvelopeForm written = a.form == "piecewise" ? EnvelopeForm::Piecewise
                                : a.form == "power"   ? EnvelopeForm::ConstantPower
                                                      : result.better;
-  std::cout << result.report(kind);
-  std::cout << "form written: " << form_name(written) << "\n";
+  report << result.report(kind);
+  report << "form written: " << form_name(written) << "\n";
+  const FormFit& fit = result.form(written);
+  if (!fit.converged) {
+    throw std::runtime_error(std::string(form_name(written)) +
+                             " fit did not converge: nothing written");
+  }
 
+  data::OutputBatch batch;  // both files or neither
   if (!a.out.empty()) {
     physics::Train t = base;
     double top_kmh = units::ms_to_kmh(base.max_speed_ms);
     for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
-    const physics::ForceEnvelope env = to_force_envelope(result.form(written), top_kmh);
+    const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
     if (kind == EnvelopeKind::Traction) {
       t.traction = env;
     } else {
       t.braking = env;
     }
-    data::save_train(t, a.out);
-    std::cout << "wrote " << a.out << "\n";
+    const std::string toml = data::train_to_toml(t);
+    batch.add(a.out, [&](std::ostream& out) { out << toml; });
   }
   if (!a.json.empty()) {
     const nlohmann::json j = envelope_fit_to_json(result, kind, written);
-    output::write_json(a.json, j);
-    std::cout << "wrote " << a.json << "\n";
+    batch.add(a.json, [&](std::ostream& out) { output::write_json(out, j); });
   }
+  batch.commit();
+  if (!a.out.empty()) report << "wrote " << a.out << "\n";
+  if (!a.json.empty()) report << "wrote " << a.json << "\n";
 }
 
 }  // namespace

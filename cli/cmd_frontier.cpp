@@ -1,19 +1,20 @@
 // `ecorail frontier`: energy-time frontiers of one section or of every section of a line, with
-// a cache keyed by line, train, grid and range so the fleet work can reuse them for free.
-#include <omp.h>
-
+// a cache keyed by line, train, grid and range (output::FileFrontierStore: a corrupt or stale
+// entry is recomputed, never trusted) so the fleet work can reuse them for free.
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
-#include <fstream>
+#include <optional>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "cli/problem_options.hpp"
-#include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/line.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "dp/section_library.hpp"
+#include "dp/threads.hpp"
+#include "output/frontier_cache.hpp"
 #include "output/frontier_io.hpp"
 #include "output/run_json.hpp"
 #include "physics/units.hpp"
@@ -31,69 +32,43 @@ struct FrontierArgs {
   bool no_cache = false;
 };
 
-// Bumped whenever the engine's results change, so stale cache entries are never read.
-constexpr const char* kCacheVersion = "ecorail-frontier-1";
-
-std::filesystem::path default_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
-    return std::filesystem::path(xdg) / "ecorail" / "frontiers";
-  }
-  if (const char* home = std::getenv("HOME"); home && *home) {
-    return std::filesystem::path(home) / ".cache" / "ecorail" / "frontiers";
-  }
-  return std::filesystem::temp_directory_path() / "ecorail-frontiers";
-}
-
+// The cache key of one section's frontier: line and train checksums, section, grid, objective,
+// range and engine version (dp::kFrontierVersion), so a stale entry is never read.
 std::string cache_key(const Problem& p, const FrontierArgs& a, const std::string& from,
                       const std::string& to) {
   char text[512];
-  std::snprintf(text, sizeof text, "%s|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g",
-                kCacheVersion, static_cast<unsigned long long>(p.line.checksum()),
+  std::snprintf(text, sizeof text,
+                "%s|frontier-command|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g",
+                dp::kFrontierVersion, static_cast<unsigned long long>(p.line.checksum()),
                 static_cast<unsigned long long>(data::train_checksum(p.train)), from.c_str(),
                 to.c_str(), a.problem.ds_m, a.problem.dv_kmh, a.problem.objective.c_str(), a.t_min,
                 a.t_max, a.step);
-  char name[64];
-  std::snprintf(name, sizeof name, "%016llx.json",
-                static_cast<unsigned long long>(data::fnv1a64(text)));
-  return name;
+  return text;
 }
 
 output::LabelledFrontier frontier_for(const Problem& p, const FrontierArgs& a,
-                                      const std::string& from, const std::string& to,
-                                      const std::filesystem::path& cache) {
-  const auto file = cache / cache_key(p, a, from, to);
-  if (!a.no_cache && std::filesystem::exists(file)) {
-    try {
-      std::ifstream in(file);
-      return output::frontier_from_json(nlohmann::json::parse(in));
-    } catch (const std::exception&) {
-      // A damaged cache entry is recomputed and overwritten.
-    }
+                                      const dp::EngineOptions& engine_opts,
+                                      const dp::FrontierOptions& options, const std::string& from,
+                                      const std::string& to, output::FileFrontierStore* cache) {
+  const std::string key = cache_key(p, a, from, to);
+  if (cache != nullptr) {
+    if (std::optional<dp::Frontier> f = cache->load(key)) return {from, to, std::move(*f)};
   }
   const physics::Route route = data::build_route(p.line, from, to, p.train);
-  const dp::SectionEngine engine(p.train, route, engine_options(a.problem));
-  dp::FrontierOptions options;
-  options.t_min_s = a.t_min;
-  options.t_max_s = a.t_max;
-  options.step_s = a.step;
+  const dp::SectionEngine engine(p.train, route, engine_opts);
   output::LabelledFrontier lf{from, to, dp::compute_frontier(engine, options)};
-  if (!a.no_cache) {
-    std::error_code ec;
-    std::filesystem::create_directories(cache, ec);
-    if (!ec) {
-      try {
-        data::write_atomically(
-            file, [&](std::ostream& out) { out << output::frontier_json(lf).dump() << "\n"; });
-      } catch (const std::exception&) {
-        // The cache is an optimisation: failing to write it is not an error.
-      }
-    }
-  }
+  if (cache != nullptr) cache->save(key, lf.frontier);
   return lf;
 }
 
 void run_frontier(const FrontierArgs& a) {
   if (!(a.step > 0.0)) throw data::InputError("command line", 0, "--step", "a step in s > 0");
+  dp::FrontierOptions options;
+  options.t_min_s = a.t_min;
+  options.t_max_s = a.t_max;
+  options.step_s = a.step;
+  const dp::EngineOptions engine_opts = engine_options(a.problem);
+  require_valid(engine_opts);
   if (a.t_max > 0.0 && a.t_max < a.t_min) {
     throw data::InputError("command line", 0, "--tmax", "a time above --tmin");
   }
@@ -117,7 +92,12 @@ void run_frontier(const FrontierArgs& a) {
     }
     sections.emplace_back(a.problem.from, a.problem.to);
   }
-  const auto cache = a.cache_dir.empty() ? default_cache_dir() : std::filesystem::path(a.cache_dir);
+  require_valid(options);
+  output::FileFrontierStore store(a.cache_dir.empty()
+                                      ? output::FileFrontierStore::default_directory()
+                                      : std::filesystem::path(a.cache_dir));
+  output::FileFrontierStore* cache = a.no_cache ? nullptr : &store;
+  const dp::ThreadScope threads(engine_opts.threads);
   // Sections are independent: with --all they are computed side by side, and the first error
   // (if any) is reported after the loop, since exceptions may not leave an OpenMP region.
   std::vector<output::LabelledFrontier> frontiers(sections.size());
@@ -127,7 +107,7 @@ void run_frontier(const FrontierArgs& a) {
   for (int i = 0; i < n; ++i) {
     const auto& [from, to] = sections[i];
     try {
-      frontiers[i] = frontier_for(p, a, from, to, cache);
+      frontiers[i] = frontier_for(p, a, engine_opts, options, from, to, cache);
 #pragma omp critical(frontier_progress)
       if (n > 1) std::fprintf(stderr, "frontier %s -> %s done\n", from.c_str(), to.c_str());
     } catch (...) {

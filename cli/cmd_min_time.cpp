@@ -39,6 +39,7 @@ void run_min_time(const MinTimeArgs& a) {
   char title[200];
   std::snprintf(title, sizeof title, "%s -> %s flat out: %.2f s", p.route.from_name().c_str(),
                 p.route.to_name().c_str(), sim.running_time_s);
+  j["provenance"] = run_provenance(p, a.problem);
   write_outputs(a.outputs, j, timeline, title, {});
 }
 

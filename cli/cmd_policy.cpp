@@ -9,14 +9,15 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "cli/problem_options.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
-#include "dp/advisor.hpp"
-#include "dp/policy_table.hpp"
-#include "dp/time_target.hpp"
 #include "physics/units.hpp"
+#include "policy/advisor.hpp"
+#include "policy/ladder.hpp"
+#include "policy/policy_table.hpp"
 
 namespace ecorail::cli {
 
@@ -38,7 +39,7 @@ void check_target_dir(const std::string& path, const char* option) {
   }
 }
 
-void print_layers(const dp::PolicyTable& t) {
+void print_layers(const policy::PolicyTable& t) {
   std::printf("  %5s %9s %9s %16s %15s %18s\n", "layer", "offset_s", "target_s", "lambda_kJ_per_s",
               "planned_time_s", "planned_energy_kJ");
   for (std::size_t k = 0; k < t.layers.size(); ++k) {
@@ -59,53 +60,46 @@ void run_write(const PolicyArgs& a) {
   if (a.out.empty()) throw data::InputError("command line", 0, "--out", "an output file");
   check_target_dir(a.out, "--out");
   check_target_dir(a.csv, "--csv");
-  std::vector<double> offsets = a.ladder_s.empty() ? std::vector<double>{0.0} : a.ladder_s;
-  if (std::set<double>(offsets.begin(), offsets.end()).size() != offsets.size()) {
+  policy::PolicyLadderOptions ladder;
+  ladder.nominal_time_s = a.time_s;
+  if (!a.ladder_s.empty()) ladder.time_offsets_s = a.ladder_s;
+  if (std::set<double>(ladder.time_offsets_s.begin(), ladder.time_offsets_s.end()).size() !=
+      ladder.time_offsets_s.size()) {
     throw data::InputError("command line", 0, "--lambda-ladder", "distinct time offsets");
   }
-  for (double d : offsets) {
+  for (double d : ladder.time_offsets_s) {
     if (!(a.time_s + d > 0.0)) {
       throw data::InputError("command line", 0, "--lambda-ladder",
                              "offsets leaving a positive running time");
     }
   }
+  const dp::EngineOptions engine_opts = engine_options(a.problem);
+  require_valid(engine_opts);
+  require_valid(ladder);
 
   const Problem p = load_problem(a.problem);
-  const dp::SectionEngine engine(p.train, p.route, engine_options(a.problem));
-  dp::PolicyTable table =
-      dp::make_policy_table(engine, p.line.name, p.line.checksum(), data::train_checksum(p.train));
-  for (double offset : offsets) {
-    const double target = a.time_s + offset;
-    dp::TimeSearchResult found;
-    try {
-      found = dp::solve_for_time(engine, target, {});
-    } catch (const dp::InfeasibleTimeError& e) {
-      throw data::InputError("command line", 0, offset == 0.0 ? "--time" : "--lambda-ladder",
-                             e.what());
-    }
-    dp::PolicyLayer layer = dp::build_policy_layer(engine, found.run.lambda);
-    layer.time_offset_s = offset;
-    layer.target_time_s = target;
-    table.layers.push_back(std::move(layer));
-  }
-  const std::string bytes = dp::encode_policy(table);
+  const dp::SectionEngine engine(p.train, p.route, engine_opts);
+  const policy::PolicyTable table = policy::build_policy_ladder(
+      engine, {p.line.name, p.line.checksum(), data::train_checksum(p.train)}, ladder);
+  const std::string bytes = policy::encode_policy(table);
   data::write_atomically(a.out, [&](std::ostream& out) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   });
   if (!a.csv.empty()) {
-    data::write_atomically(a.csv, [&](std::ostream& out) { dp::write_policy_csv(out, table); });
+    data::write_atomically(a.csv, [&](std::ostream& out) { policy::write_policy_csv(out, table); });
   }
   // Read the file back through the checks an on-board user would apply.
-  const dp::Advisor advisor = dp::Advisor::load(a.out, p.line, p.train);
+  const policy::Advisor advisor = policy::Advisor::load(a.out, p.line, p.train);
   std::printf(
       "ecorail policy %s -> %s (%.1f m), %s objective: %d stages, %d nodes, grid ds %g m, "
       "dv %g km/h, %zu layer(s)\n",
       table.from.c_str(), table.to.c_str(), table.route_length_m,
-      table.objective == dp::Objective::Net ? "net" : "traction", table.stage_count(),
+      std::string(dp::objective_name(table.objective)).c_str(), table.stage_count(),
       table.node_count(), table.grid_spec.ds_m, table.grid_spec.dv_kmh, table.layers.size());
   print_layers(table);
   std::printf("wrote %s (%zu bytes, format version %u), verified by reloading%s%s\n", a.out.c_str(),
-              bytes.size(), dp::kPolicyFormatVersion, a.csv.empty() ? "" : "; CSV ", a.csv.c_str());
+              bytes.size(), policy::kPolicyFormatVersion, a.csv.empty() ? "" : "; CSV ",
+              a.csv.c_str());
 }
 
 void parse_state(const std::string& text, double* s_m, double* v_kmh) {
@@ -130,10 +124,10 @@ void run_inspect(const PolicyArgs& a) {
     states.emplace_back(s_m, v_kmh);
   }
   const Problem p = load_problem(a.problem);
-  dp::PolicyTable table;
+  policy::PolicyTable table;
   try {
-    table = dp::load_policy(a.inspect);
-  } catch (const dp::PolicyFormatError& e) {
+    table = policy::load_policy(a.inspect);
+  } catch (const policy::PolicyFormatError& e) {
     throw data::InputError(a.inspect, 0, "",
                            "a readable policy table (" + without_prefix(e.what(), a.inspect) + ")");
   }
@@ -141,25 +135,25 @@ void run_inspect(const PolicyArgs& a) {
       "policy table %s: format version %u, %s -> %s (%.3f m), line '%s' (checksum 0x%016llx), "
       "train '%s' (checksum 0x%016llx), %s objective, grid ds %g m, dv %g km/h, substep %g m, "
       "%d stages, %d nodes, %zu layer(s)\n",
-      a.inspect.c_str(), dp::kPolicyFormatVersion, table.from.c_str(), table.to.c_str(),
+      a.inspect.c_str(), policy::kPolicyFormatVersion, table.from.c_str(), table.to.c_str(),
       table.route_length_m, table.line_name.c_str(),
       static_cast<unsigned long long>(table.line_checksum), table.train_name.c_str(),
       static_cast<unsigned long long>(table.train_checksum),
-      table.objective == dp::Objective::Net ? "net" : "traction", table.grid_spec.ds_m,
+      std::string(dp::objective_name(table.objective)).c_str(), table.grid_spec.ds_m,
       table.grid_spec.dv_kmh, table.grid_spec.substep_m, table.stage_count(), table.node_count(),
       table.layers.size());
   print_layers(table);
-  std::unique_ptr<dp::Advisor> advisor;
+  std::unique_ptr<policy::Advisor> advisor;
   try {
-    advisor = std::make_unique<dp::Advisor>(std::move(table), p.line, p.train);
-  } catch (const dp::PolicyMismatchError& e) {
+    advisor = std::make_unique<policy::Advisor>(std::move(table), p.line, p.train);
+  } catch (const policy::PolicyMismatchError& e) {
     throw data::InputError(
         a.inspect, 0, "", std::string("a policy table for this line and train (") + e.what() + ")");
   }
   std::printf("matches line '%s' and train '%s'\n", p.line.name.c_str(), p.train.name.c_str());
   for (const auto& [s_m, v_kmh] : states) {
     for (std::size_t k = 0; k < advisor->table().layers.size(); ++k) {
-      const dp::Advice adv = advisor->advise(static_cast<int>(k), s_m, units::kmh_to_ms(v_kmh));
+      const policy::Advice adv = advisor->advise(static_cast<int>(k), s_m, units::kmh_to_ms(v_kmh));
       if (!adv.feasible) {
         std::printf("at %.2f m, %.2f km/h, layer %zu: no control reaches the stop\n", s_m, v_kmh,
                     k);

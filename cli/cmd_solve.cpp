@@ -4,11 +4,13 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "cli/journey_solve.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
+#include "dp/journey.hpp"
 #include "dp/section_solve.hpp"
 #include "output/run_json.hpp"
 #include "physics/units.hpp"
@@ -37,18 +39,18 @@ void print_regimes(const std::vector<dp::RegimeSpan>& spans) {
 }
 
 output::SummaryRows summary_rows(const dp::SectionSolveSummary& s) {
-  auto num = [](double v) { return std::to_string(v); };
   return {{"section", s.from + " -> " + s.to},
-          {"distance_m", num(s.distance_m)},
-          {"target_time_s", num(s.target_time_s)},
-          {"running_time_s", num(s.running_time_s)},
-          {"traction_energy_kJ", num(s.traction_energy_kJ)},
-          {"regen_energy_kJ", num(s.regen_energy_kJ)},
-          {"net_energy_kJ", num(s.net_energy_kJ)},
-          {"stop_error_m", num(s.stop_error_m)},
-          {"max_overspeed_kmh", num(s.max_overspeed_kmh)},
-          {"lambda_kJ_per_s", num(s.lambda_J_per_s / 1000.0)},
-          {"grid", "ds " + num(s.grid.ds_m) + " m, dv " + num(s.grid.dv_kmh) + " km/h"}};
+          {"distance_m", s.distance_m},
+          {"target_time_s", s.target_time_s},
+          {"running_time_s", s.running_time_s},
+          {"traction_energy_kJ", s.traction_energy_kJ},
+          {"regen_energy_kJ", s.regen_energy_kJ},
+          {"net_energy_kJ", s.net_energy_kJ},
+          {"stop_error_m", s.stop_error_m},
+          {"max_overspeed_kmh", s.max_overspeed_kmh},
+          {"lambda_kJ_per_s", s.lambda_J_per_s / 1000.0},
+          {"grid_ds_m", s.grid.ds_m},
+          {"grid_dv_kmh", s.grid.dv_kmh}};
 }
 
 void run_solve(const SolveArgs& a) {
@@ -59,33 +61,24 @@ void run_solve(const SolveArgs& a) {
   {
     ProblemOptions line_only = a.problem;
     line_only.from.clear();
-    const std::vector<std::string> stops =
-        data::stops_between(load_problem(line_only).line, a.problem.from, a.problem.to);
+    const std::vector<std::string> stops = run_stops(load_problem(line_only).line, a.problem);
     if (stops.size() > 2) {
       run_journey(a.problem, a.journey, a.outputs, a.time_s, a.full_report, stops);
       return;
     }
   }
-  const Problem p = load_problem(a.problem);
   dp::SectionSolveOptions options;
   options.engine = engine_options(a.problem);
-  dp::SectionSolution solution;
-  try {
-    solution = dp::solve_section(p.train, p.route, a.time_s, options);
-  } catch (const dp::InfeasibleTimeError& e) {
-    char expected[200];
-    std::snprintf(expected, sizeof expected,
-                  "at least the minimum running time of %.2f s for %s -> %s (flat-out run); got "
-                  "%.2f s",
-                  e.minimum_s(), p.route.from_name().c_str(), p.route.to_name().c_str(), a.time_s);
-    throw data::InputError("command line", 0, "--time", expected);
-  }
+  require_valid(options);
+  const Problem p = load_problem(a.problem);
+  const dp::SectionSolution solution = dp::solve_section(p.train, p.route, a.time_s, options);
   const auto& s = solution.summary;
   std::cout << (a.full_report ? s.FullReport() : s.BriefReport());
   if (!s.IsSolutionUsable()) {
     for (const auto& w : s.warnings) std::cout << "  warning: " << w << "\n";
-    throw std::runtime_error("the run misses its stop or its running time (see the warnings); "
-                             "no output was written");
+    throw std::runtime_error(
+        "the run misses its stop or its running time (see the warnings); "
+        "no output was written");
   }
   print_regimes(solution.regimes);
   output::Timeline timeline;
@@ -93,8 +86,9 @@ void run_solve(const SolveArgs& a) {
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
-  write_outputs(a.outputs, output::section_solution_json(solution), timeline, title,
-                summary_rows(s));
+  nlohmann::json report = output::section_solution_json(solution);
+  report["provenance"] = run_provenance(p, a.problem, {{"time_s", a.time_s}});
+  write_outputs(a.outputs, report, timeline, title, summary_rows(s));
 }
 
 }  // namespace
@@ -111,7 +105,8 @@ void add_solve_command(CLI::App& app) {
   cmd->add_option("--split", args->journey.split,
                   "optimal: one lambda for all sections; proportional: time in proportion to "
                   "distance")
-      ->check(CLI::IsMember({"optimal", "proportional"}))
+      ->check(CLI::IsMember({std::string(dp::split_name(dp::Split::Optimal)),
+                             std::string(dp::split_name(dp::Split::Proportional))}))
       ->capture_default_str();
   cmd->add_option("--marginals", args->journey.marginals,
                   "measure each section's marginal energy per second (+-0.5 s re-solves): "

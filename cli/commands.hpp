@@ -1,5 +1,5 @@
 // Subcommands of the ecorail program. Each lives in its own cli/cmd_*.cpp and registers itself
-// on the CLI11 app; main.cpp turns exceptions into exit codes (InputError: 2, others: 1).
+// on the CLI11 app; cli/errors.cpp turns exceptions into one-line errors and exit codes.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,5 +12,7 @@ void add_fit_envelope_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_policy_command(CLI::App& app);
 void add_frontier_command(CLI::App& app);
+// `ecorail timetable evaluate|optimise`: fleet timetables (cli/cmd_timetable.cpp).
+void add_timetable_command(CLI::App& app);
 
 }  // namespace ecorail::cli

@@ -13,12 +13,13 @@ namespace ecorail::cli {
 
 struct JourneyArgs {
   std::vector<std::string> dwells;  // "A7=45" or "30"
-  std::string split = "optimal";
-  std::string marginals = "auto";  // on, off, auto (on up to 4 sections)
+  std::string split = "optimal";    // a dp::split_name
+  std::string marginals = "auto";   // on, off, auto (on up to 4 sections)
 };
 
-// Dwell at each intermediate stop; InputError for a malformed value, an unknown or
-// non-intermediate station, or an intermediate stop without a dwell.
+// Dwell at each intermediate stop: parses the text and hands the meaning to dp::resolve_dwells.
+// InputError for a malformed value; dp::DwellError for an unknown or non-intermediate station,
+// or an intermediate stop without a dwell.
 std::vector<double> parse_dwells(const std::vector<std::string>& values,
                                  const std::vector<std::string>& stops);
 

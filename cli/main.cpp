@@ -1,10 +1,6 @@
 // ecorail: energy-optimal train driving. See README.md for the commands.
-#include <cstdio>
-#include <exception>
-#include <iostream>
-
 #include "cli/commands.hpp"
-#include "data/input_error.hpp"
+#include "cli/errors.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ecorail: energy-optimal driving of metro trains"};
@@ -15,17 +11,7 @@ int main(int argc, char** argv) {
   ecorail::cli::add_calibrate_command(app);
   ecorail::cli::add_policy_command(app);
   ecorail::cli::add_frontier_command(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  } catch (const ecorail::data::InputError& e) {
-    std::cerr << "ecorail: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "ecorail: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  ecorail::cli::add_timetable_command(app);
+  // Errors become one line and an exit code in one place (cli/errors.cpp).
+  return ecorail::cli::run_reporting_errors(app, argc, argv);
 }

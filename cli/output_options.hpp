@@ -1,12 +1,17 @@
-// Output flags shared by the engine commands (--json, --csv, --xlsx, --plot) and the writing of
-// them. Target directories are checked before any work starts, and every file is written
-// atomically, so a failed run leaves no partial output behind.
+// Output flags shared by the engine commands (--json, --csv, --xlsx, --plot, --plot-x) and the
+// writing of them. Every target is checked before any work starts (directory exists and is
+// writable, the target is a regular file or absent, no two outputs share a path, a plot is
+// .svg or .png and gnuplot can draw it: installed, with the svg or pngcairo terminal); the
+// outputs are then written to temporaries and renamed into place together only when all of them
+// succeeded, so a failed run leaves none behind. "-" writes an output to standard output.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "cli/problem_options.hpp"
 #include "output/profile_writers.hpp"
 #include "output/timeline.hpp"
 
@@ -14,11 +19,29 @@ namespace ecorail::cli {
 
 struct OutputOptions {
   std::string json, csv, xlsx, plot;
+  std::string plot_x = "distance";  // distance or time
+};
+
+// One output of a command, for check_output_targets: its flag, its path (empty: not asked
+// for), and whether it is a plot (gnuplot, .svg or .png).
+struct OutputTarget {
+  std::string flag;
+  std::string path;
+  bool plot = false;
 };
 
 void add_output_options(CLI::App* cmd, OutputOptions& o);
-// InputError if a target's directory does not exist.
+// InputError naming the flag for the first unsuitable target (see the header summary).
+void check_output_targets(const std::vector<OutputTarget>& targets);
 void check_output_targets(const OutputOptions& o);
+// The "provenance" of a report (output/provenance.hpp): program, line and train with their
+// checksums, grid, and the options that shape the result (--threads is left out: it does not
+// change the result, and the report states it under "threads"). extra_options adds the
+// command's own (running time, dwells, split...).
+nlohmann::json run_provenance(const Problem& problem, const ProblemOptions& options,
+                              const nlohmann::json& extra_options = nlohmann::json::object());
+// Writes every requested output, all or none. The plot names the stations from the report's
+// "stops" (or "from" and "to") and the objective from its "objective" (or its provenance).
 void write_outputs(const OutputOptions& o, const nlohmann::json& report,
                    const output::Timeline& timeline, const std::string& title,
                    const output::SummaryRows& summary);

@@ -1,6 +1,6 @@
 #include "cli/problem_options.hpp"
 
-#include <omp.h>
+#include <algorithm>
 
 #include "data/input_error.hpp"
 #include "data/line_loader.hpp"
@@ -9,6 +9,20 @@
 
 namespace ecorail::cli {
 
+namespace {
+// The flags behind the engine options, checked first so a bad value names its flag (the
+// options' own IsValid then guards the library's rules).
+void check_grid_flags(const ProblemOptions& o) {
+  if (!(o.ds_m > 0.0 && o.ds_m <= 100.0)) {
+    throw data::InputError("command line", 0, "--ds", "a position step in (0, 100] m");
+  }
+  if (!(o.dv_kmh > 0.0 && o.dv_kmh <= 10.0)) {
+    throw data::InputError("command line", 0, "--dv", "a speed step in (0, 10] km/h");
+  }
+  if (o.threads < 0) throw data::InputError("command line", 0, "--threads", "at least 1");
+}
+}  // namespace
+
 void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_required) {
   auto* from = cmd->add_option("--from", o.from, "departure station (e.g. A6)");
   auto* to = cmd->add_option("--to", o.to, "arrival station (e.g. A7)");
@@ -16,6 +30,7 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
     from->required();
     to->required();
   }
+  add_pass_through_option(cmd, o);
   cmd->add_option("--line", o.line_path,
                   "line: a directory of stations/gradients/speed_limits/curves CSVs or a TOML "
                   "file (default: the embedded reference line)");
@@ -25,32 +40,68 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
   cmd->add_option("--threads", o.threads, "OpenMP threads (default: all cores)");
   cmd->add_option("--objective", o.objective,
                   "traction: minimise traction energy; net: also credit regenerated energy")
-      ->check(CLI::IsMember({"traction", "net"}))
+      ->check(CLI::IsMember({std::string(dp::objective_name(dp::Objective::Traction)),
+                             std::string(dp::objective_name(dp::Objective::Net))}))
       ->capture_default_str();
 }
 
 Problem load_problem(const ProblemOptions& o) {
-  if (!(o.ds_m > 0.0 && o.ds_m <= 100.0)) {
-    throw data::InputError("command line", 0, "--ds", "a position step in (0, 100] m");
-  }
-  if (!(o.dv_kmh > 0.0 && o.dv_kmh <= 10.0)) {
-    throw data::InputError("command line", 0, "--dv", "a speed step in (0, 10] km/h");
-  }
-  if (o.threads < 0) throw data::InputError("command line", 0, "--threads", "at least 1");
-  if (o.threads > 0) omp_set_num_threads(o.threads);
+  check_grid_flags(o);
   Problem p{o.line_path.empty() ? data::default_line() : data::load_line(o.line_path),
             o.train_path.empty() ? data::default_train() : data::load_train(o.train_path),
             {}};
-  if (!o.from.empty()) p.route = data::build_route(p.line, o.from, o.to, p.train);
+  if (!o.from.empty()) {
+    const std::vector<std::string> stops = run_stops(p.line, o);
+    if (stops.size() > 2) {
+      std::string between;
+      for (std::size_t i = 1; i + 1 < stops.size(); ++i) between += " --pass-through " + stops[i];
+      throw data::InputError("command line", 0, "--to",
+                             "a run without intermediate stops for this command (add" + between +
+                                 " to run through); got '" + o.to + "', which stops at " +
+                                 stops[1]);
+    }
+    p.route = data::build_route(p.line, o.from, o.to, p.train);
+  }
   return p;
 }
 
+void add_pass_through_option(CLI::App* cmd, ProblemOptions& o) {
+  cmd->add_option("--pass-through", o.pass_through,
+                  "intermediate station the run passes without stopping (repeatable; default: "
+                  "the run stops at every station between --from and --to)");
+}
+
+std::vector<std::string> run_stops(const data::Line& line, const ProblemOptions& o) {
+  const std::vector<std::string> all = data::stops_between(line, o.from, o.to);
+  for (const auto& name : o.pass_through) {
+    if (std::find(all.begin() + 1, all.end() - 1, name) == all.end() - 1) {
+      std::string list;
+      for (std::size_t i = 1; i + 1 < all.size(); ++i) list += (list.empty() ? "" : ", ") + all[i];
+      throw data::InputError("command line", 0, "--pass-through",
+                             "a station between --from and --to (" +
+                                 (list.empty() ? std::string("none here") : list) + "); got '" +
+                                 name + "'");
+    }
+  }
+  std::vector<std::string> stops;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const bool passed =
+        i > 0 && i + 1 < all.size() &&
+        std::find(o.pass_through.begin(), o.pass_through.end(), all[i]) != o.pass_through.end();
+    if (!passed) stops.push_back(all[i]);
+  }
+  return stops;
+}
+
 dp::EngineOptions engine_options(const ProblemOptions& o) {
+  check_grid_flags(o);
   dp::EngineOptions e;
   e.grid.ds_m = o.ds_m;
   e.grid.dv_kmh = o.dv_kmh;
   e.grid.substep_m = 0.5 * o.ds_m;
-  e.objective = o.objective == "net" ? dp::Objective::Net : dp::Objective::Traction;
+  // --objective is checked against the names by CLI11; the default covers the impossible rest.
+  e.objective = dp::objective_from_name(o.objective).value_or(dp::Objective::Traction);
+  e.threads = o.threads;  // the library sets OpenMP's thread count per call (dp/threads.hpp)
   return e;
 }
 

@@ -1,6 +1,9 @@
 #include "data/atomic_file.hpp"
 
+#include <atomic>
 #include <fstream>
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -9,36 +12,143 @@
 namespace ecorail::data {
 
 namespace {
-std::filesystem::path temp_beside(const std::filesystem::path& path) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp" + std::to_string(::getpid());
+
+// Unique within the process (the frontier cache writes from several threads) and between
+// processes (the pid), so two writers never share a temporary.
+std::filesystem::path temp_for(const std::filesystem::path& target) {
+  static std::atomic<unsigned> counter{0};
+  const std::string suffix = ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
+  if (is_stdout_path(target)) {
+    return std::filesystem::temp_directory_path() / ("ecorail-stdout" + suffix);
+  }
+  std::filesystem::path tmp = target;
+  tmp += suffix;
   return tmp;
 }
+
+void remove_quietly(const std::filesystem::path& p) {
+  std::error_code ignored;
+  std::filesystem::remove(p, ignored);
+}
+
+void check_target(const std::filesystem::path& path) {
+  const std::string problem = output_target_problem(path);
+  if (!problem.empty()) throw std::runtime_error(problem);
+}
+
 }  // namespace
 
-void produce_atomically(const std::filesystem::path& path,
-                        const std::function<void(const std::filesystem::path&)>& produce) {
-  const auto tmp = temp_beside(path);
-  try {
-    produce(tmp);
-    if (!std::filesystem::exists(tmp)) throw std::runtime_error("nothing was written");
-    std::filesystem::rename(tmp, path);
-  } catch (const std::exception& ex) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot write " + path.string() + ": " + ex.what());
+std::string output_target_problem(const std::filesystem::path& path) {
+  if (is_stdout_path(path)) return "";
+  if (path.empty()) return "an empty path";
+  std::error_code ec;
+  const auto st = std::filesystem::symlink_status(path, ec);
+  if (!ec && std::filesystem::exists(st)) {
+    if (std::filesystem::is_directory(st)) return "'" + path.string() + "' is a directory";
+    if (std::filesystem::is_symlink(st)) {
+      return "'" + path.string() +
+             "' is a symbolic link (only regular files are replaced; '-' writes to standard "
+             "output)";
+    }
+    if (!std::filesystem::is_regular_file(st)) {
+      return "'" + path.string() +
+             "' is not a regular file (a FIFO, a device or a socket is never replaced; '-' "
+             "writes to standard output)";
+    }
+  }
+  std::filesystem::path dir = path.parent_path();
+  if (dir.empty()) dir = ".";
+  if (!std::filesystem::is_directory(dir, ec)) {
+    return "directory '" + dir.string() + "' does not exist";
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+    return "directory '" + dir.string() + "' is not writable";
+  }
+  return "";
+}
+
+OutputBatch::~OutputBatch() {
+  if (committed_) return;
+  for (const auto& e : entries_) {
+    if (!e.tmp.empty()) remove_quietly(e.tmp);
   }
 }
 
-void write_atomically(const std::filesystem::path& path,
+void OutputBatch::add(const std::filesystem::path& path,
                       const std::function<void(std::ostream&)>& write) {
-  produce_atomically(path, [&](const std::filesystem::path& tmp) {
+  add_produced(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw std::runtime_error("cannot open for writing");
     write(out);
     out.flush();
     if (!out) throw std::runtime_error("write failed");
   });
+}
+
+void OutputBatch::add_produced(const std::filesystem::path& path,
+                               const std::function<void(const std::filesystem::path&)>& produce) {
+  const auto tmp = temp_for(path);
+  try {
+    check_target(path);
+    produce(tmp);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(tmp, ec))) {
+      throw std::runtime_error("nothing was written");
+    }
+  } catch (const std::exception& ex) {
+    remove_quietly(tmp);
+    throw std::runtime_error("cannot write " + path.string() + ": " + ex.what());
+  }
+  if (is_stdout_path(path)) {
+    // Held in memory until commit: a temporary file outside the target's directory could be
+    // left behind when standard output is a closed pipe (SIGPIPE ends the process).
+    std::ifstream in(tmp, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    in.close();
+    remove_quietly(tmp);
+    entries_.push_back({path, {}, content.str()});
+    return;
+  }
+  entries_.push_back({path, tmp, {}});
+}
+
+void OutputBatch::commit() {
+  // Everything is written; only the targets may have changed since they were checked.
+  for (const auto& e : entries_) {
+    const std::string problem = output_target_problem(e.target);
+    if (!problem.empty())
+      throw std::runtime_error("cannot write " + e.target.string() + ": " + problem);
+  }
+  for (const auto& e : entries_) {
+    if (is_stdout_path(e.target)) {
+      std::cout.flush();
+      std::cout << e.stdout_content;
+      std::cout.flush();
+      if (!std::cout) throw std::runtime_error("cannot write to standard output");
+      continue;
+    }
+    std::error_code ec;
+    std::filesystem::rename(e.tmp, e.target, ec);
+    if (ec) {
+      throw std::runtime_error("cannot write " + e.target.string() + ": " + ec.message());
+    }
+  }
+  committed_ = true;
+}
+
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(std::ostream&)>& write) {
+  OutputBatch batch;
+  batch.add(path, write);
+  batch.commit();
+}
+
+void produce_atomically(const std::filesystem::path& path,
+                        const std::function<void(const std::filesystem::path&)>& produce) {
+  OutputBatch batch;
+  batch.add_produced(path, produce);
+  batch.commit();
 }
 
 }  // namespace ecorail::data

@@ -191,4 +191,16 @@ std::vector<std::string> stops_between(const Line& line, const std::string& from
   return stops;
 }
 
+std::vector<physics::Route> build_routes(const Line& line, const std::vector<std::string>& stops,
+                                         const physics::Train& train) {
+  if (stops.size() < 2) {
+    throw InputError(line.stations_file, 0, "station", "at least two stops for a run");
+  }
+  std::vector<physics::Route> routes;
+  for (std::size_t i = 0; i + 1 < stops.size(); ++i) {
+    routes.push_back(build_route(line, stops[i], stops[i + 1], train));
+  }
+  return routes;
+}
+
 }  // namespace ecorail::data

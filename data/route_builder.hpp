@@ -22,4 +22,9 @@ physics::Route build_route(const Line& line, const std::string& from, const std:
 std::vector<std::string> stops_between(const Line& line, const std::string& from,
                                        const std::string& to);
 
+// The routes of a run over `stops` (at least two), one per leg between consecutive stops, in
+// the order of travel: the section list of a journey.
+std::vector<physics::Route> build_routes(const Line& line, const std::vector<std::string>& stops,
+                                         const physics::Train& train);
+
 }  // namespace ecorail::data

@@ -1,10 +1,95 @@
 #include "dp/frontier.hpp"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "dp/text_format.hpp"
+#include "dp/threads.hpp"
+#include "physics/units.hpp"
 
 namespace ecorail::dp {
 
+bool FrontierOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(t_min_s >= 0.0 && std::isfinite(t_min_s))) {
+    return fail("t_min_s must be a running time >= 0 s (0: the minimum)");
+  }
+  if (!(t_max_s >= 0.0 && std::isfinite(t_max_s))) {
+    return fail("t_max_s must be a running time >= 0 s (0: minimum + 60 s)");
+  }
+  if (t_max_s > 0.0 && t_max_s < t_min_s) return fail("t_max_s must not be below t_min_s");
+  if (!(step_s > 0.0 && std::isfinite(step_s))) return fail("step_s must be a step in s > 0");
+  if (!(convexity_tolerance >= 0.0 && std::isfinite(convexity_tolerance))) {
+    return fail("convexity_tolerance must be a finite number >= 0");
+  }
+  return search.IsValid(error);
+}
+
+FrontierSummary summarize_frontier(const Frontier& f, const std::string& from,
+                                   const std::string& to) {
+  FrontierSummary s;
+  s.from = from;
+  s.to = to;
+  s.min_time_s = f.min_time_s;
+  s.points = static_cast<int>(f.points.size());
+  for (const FrontierPoint& p : f.points) {
+    s.converged_points += p.converged ? 1 : 0;
+    s.evaluations += p.evaluations;
+  }
+  if (!f.points.empty()) {
+    s.t_first_s = f.points.front().running_time_s;
+    s.t_last_s = f.points.back().running_time_s;
+    s.first_energy_kJ = units::J_to_kJ(f.points.front().cost_J);
+    s.last_energy_kJ = units::J_to_kJ(f.points.back().cost_J);
+  }
+  s.monotone = f.monotone;
+  s.convex = f.convex;
+  for (const FrontierWobble& w : f.wobbles) {
+    s.warnings.push_back(format_text("%s at %.1f s by %.3f kJ (grid effect)", w.kind.c_str(),
+                                     w.time_s, units::J_to_kJ(w.size_J)));
+  }
+  if (s.converged_points < s.points) {
+    s.warnings.push_back(format_text("%d of %d points missed their running time",
+                                     s.points - s.converged_points, s.points));
+  }
+  s.termination = s.points == 0                    ? Termination::FAILURE
+                  : s.converged_points == s.points ? Termination::CONVERGENCE
+                                                   : Termination::NO_CONVERGENCE;
+  return s;
+}
+
+std::string FrontierSummary::BriefReport() const {
+  return format_text(
+      "ecorail frontier %s -> %s: %d points from %.3f s to %.3f s (minimum %.3f s), %.1f kJ to "
+      "%.1f kJ, %s\n",
+      from.c_str(), to.c_str(), points, t_first_s, t_last_s, min_time_s, first_energy_kJ,
+      last_energy_kJ, std::string(status_word(termination, warnings.size())).c_str());
+}
+
+std::string FrontierSummary::FullReport() const {
+  std::string r = "\necorail frontier report\n\n";
+  r += format_text("  %-28s %s -> %s\n", "Section", from.c_str(), to.c_str());
+  r += format_text("  %-28s %.3f s\n", "Minimum running time", min_time_s);
+  r += format_text("  %-28s %d (%d met their time), %.3f s to %.3f s\n", "Points", points,
+                   converged_points, t_first_s, t_last_s);
+  r +=
+      format_text("  %-28s %d lambda evaluations and trim re-simulations\n", "Search", evaluations);
+  r += format_text("  %-28s %.3f kJ to %.3f kJ\n", "Energy", first_energy_kJ, last_energy_kJ);
+  r += format_text("  %-28s %s, %s\n", "Shape", monotone ? "monotone" : "NOT monotone",
+                   convex ? "convex" : "NOT convex");
+  r += format_text("\n  %-28s %s\n", "Termination",
+                   std::string(termination_name(termination)).c_str());
+  for (const auto& w : warnings) r += "  warning: " + w + "\n";
+  return r;
+}
+
 Frontier compute_frontier(const SectionEngine& engine, const FrontierOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  const ThreadScope threads(engine.options().threads);
   Frontier f;
   const physics::SimulationResult flat_out = engine.min_time_run();
   f.min_time_s = flat_out.running_time_s;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dp/section_engine.hpp"
+#include "dp/termination.hpp"
 #include "dp/time_target.hpp"
 
 namespace ecorail::dp {
@@ -20,6 +21,8 @@ struct FrontierOptions {
   TimeSearchOptions search;
   // A second difference below -convexity_tolerance * energy counts as a convexity wobble.
   double convexity_tolerance = 1e-5;
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct FrontierPoint {
@@ -48,6 +51,30 @@ struct Frontier {
   bool convex = true;
 };
 
+// The report of a frontier, like a section's: CONVERGENCE when every point met its running
+// time, NO_CONVERGENCE when some did not, FAILURE when there are no points. Wobbles of the
+// grid (non-monotone or non-convex steps) are warnings, not failures.
+struct FrontierSummary {
+  std::string from, to;
+  double min_time_s = 0.0;
+  double t_first_s = 0.0, t_last_s = 0.0;  // running times of the first and last points
+  int points = 0;
+  int converged_points = 0;
+  int evaluations = 0;  // lambda evaluations and trim re-simulations over all points
+  double first_energy_kJ = 0.0, last_energy_kJ = 0.0;  // by the engine's objective
+  bool monotone = true, convex = true;
+  Termination termination = Termination::FAILURE;
+  std::vector<std::string> warnings;
+
+  std::string BriefReport() const;
+  std::string FullReport() const;
+  bool IsSolutionUsable() const { return is_usable(termination); }
+};
+
+FrontierSummary summarize_frontier(const Frontier& frontier, const std::string& from,
+                                   const std::string& to);
+
+// Options are checked before any work (std::invalid_argument).
 Frontier compute_frontier(const SectionEngine& engine, const FrontierOptions& options);
 // Fills wobbles, monotone and convex from the points.
 void check_frontier_shape(Frontier& frontier, double convexity_tolerance);

@@ -3,6 +3,11 @@
 #include "dp/lambda_bracket.hpp"
 #include "dp/section_library.hpp"
 #include "dp/section_solve.hpp"
+#include "dp/text_format.hpp"
+#include "dp/threads.hpp"
+#include "physics/units.hpp"
+
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -147,12 +152,133 @@ PricePrediction price_from_frontiers(const SectionLibrary& library, std::size_t 
   return p;
 }
 
+// The journey's summary from its solution, under the names and units of a section's.
+void summarise_journey(const std::vector<physics::Route>& routes, double min_total_s,
+                       const JourneyOptions& options, JourneySolution& sol) {
+  JourneySummary& s = sol.summary;
+  s.from = routes.front().from_name();
+  s.to = routes.back().to_name();
+  s.sections = static_cast<int>(routes.size());
+  s.split = options.split;
+  for (const auto& r : routes) s.distance_m += r.length_m();
+  s.distance_m -= options.start.position_m;
+  s.target_time_s = sol.target_time_s;
+  s.min_time_s = min_total_s;
+  s.grid = options.engine.grid;
+  s.threads = omp_get_max_threads();
+  s.objective = options.engine.objective;
+  s.lambda_J_per_s = sol.lambda_J_per_s;
+  s.lambda_evaluations = sol.lambda_evaluations;
+  s.build_wall_s = sol.build_wall_s;
+  s.search_wall_s = sol.search_wall_s;
+  s.total_wall_s = sol.total_wall_s;
+  s.running_time_s = sol.running_time_s;
+  s.traction_energy_kJ = units::J_to_kJ(sol.traction_work_J);
+  s.braking_energy_kJ = units::J_to_kJ(sol.brake_work_J);
+  s.regen_energy_kJ = units::J_to_kJ(sol.regen_J);
+  s.net_energy_kJ = units::J_to_kJ(sol.net_J);
+  bool arrives = true;
+  for (const JourneySection& sec : sol.sections) {
+    const physics::SimulationResult& sim = sec.run.sim;
+    s.dwell_time_s += sec.dwell_after_s;
+    if (std::abs(sim.stop_error_m) > std::abs(s.stop_error_m)) s.stop_error_m = sim.stop_error_m;
+    s.max_overspeed_kmh =
+        std::max(s.max_overspeed_kmh, units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms)));
+    arrives = arrives && run_arrives(sim);
+  }
+  s.termination = termination_of(arrives, sol.converged);
+  s.converged = s.termination == Termination::CONVERGENCE;
+  s.warnings = sol.warnings;
+}
+
 }  // namespace
+
+std::string JourneySummary::BriefReport() const {
+  // The time price as the journey report has always printed it (std::to_string: 6 decimals).
+  const std::string price = std::isfinite(lambda_J_per_s)
+                                ? ", lambda " + std::to_string(lambda_J_per_s / 1000.0) + " kJ/s"
+                                : std::string();
+  return format_text(
+      "ecorail solve %s -> %s (%d sections, %s split) in %.3f s running time: traction %.1f "
+      "kJ, regenerated %.1f kJ%s, %.3f s wall, %s\n",
+      from.c_str(), to.c_str(), sections, std::string(split_name(split)).c_str(), running_time_s,
+      traction_energy_kJ, regen_energy_kJ, price.c_str(), total_wall_s,
+      std::string(status_word(termination, warnings.size())).c_str());
+}
+
+std::string JourneySummary::FullReport() const {
+  std::string r = "\necorail journey solver report\n\n";
+  r +=
+      format_text("  %-28s %s -> %s, %d sections\n", "Journey", from.c_str(), to.c_str(), sections);
+  r += format_text("  %-28s %.1f m\n", "Distance", distance_m);
+  r += format_text("  %-28s %.3f s (minimum %.3f s), dwells %.3f s\n", "Target running time",
+                   target_time_s, min_time_s, dwell_time_s);
+  r += format_text("  %-28s %s\n", "Split", std::string(split_name(split)).c_str());
+  r += format_text("  %-28s %s\n", "Objective", std::string(objective_name(objective)).c_str());
+  r += format_text("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m,
+                   grid.dv_kmh, grid.substep_m);
+  r += format_text("  %-28s %d\n", "Threads", threads);
+  if (std::isfinite(lambda_J_per_s)) {
+    r += format_text("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
+  }
+  r += format_text("  %-28s %d lambda evaluations\n", "Search", lambda_evaluations);
+  r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
+                   search_wall_s, total_wall_s);
+  r += "\n  Re-simulated result\n";
+  r += format_text("  %-28s %.4f s\n", "Running time", running_time_s);
+  r += format_text("  %-28s %.3f kJ\n", "Traction energy", traction_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Braking work", braking_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Regenerated energy", regen_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Net energy", net_energy_kJ);
+  r += format_text("  %-28s %.4f m\n", "Stop error (largest)", stop_error_m);
+  r += format_text("  %-28s %.4f km/h\n", "Max overspeed", max_overspeed_kmh);
+  r += format_text("\n  %-28s %s\n", "Termination",
+                   std::string(termination_name(termination)).c_str());
+  for (const auto& w : warnings) r += "  warning: " + w + "\n";
+  return r;
+}
+
+physics::Trip journey_trip(const JourneySolution& solution,
+                           const std::vector<physics::Route>& routes, double departure_s,
+                           double regen_efficiency) {
+  if (routes.size() != solution.sections.size()) {
+    throw std::invalid_argument("a journey trip needs one route per section of the solution");
+  }
+  std::vector<physics::TripSection> sections;
+  for (std::size_t i = 0; i < routes.size(); ++i) {
+    const JourneySection& sec = solution.sections[i];
+    sections.push_back({&routes[i], &sec.run.sim, i + 1 < routes.size() ? sec.dwell_after_s : 0.0});
+  }
+  return physics::Trip(sections, departure_s, regen_efficiency);
+}
+
+bool JourneyOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!engine.IsValid(error) || !search.IsValid(error)) return false;
+  if (split != Split::Optimal && split != Split::Proportional) {
+    return fail("split must be optimal or proportional");
+  }
+  if (!(marginal_step_s > 0.0 && marginal_step_s <= 10.0)) {
+    return fail("marginal_step_s must be in (0, 10] s");
+  }
+  if (!(start.position_m >= 0.0 && std::isfinite(start.position_m))) {
+    return fail("start position_m must be a finite position >= 0 m");
+  }
+  if (!(start.speed_ms >= 0.0 && std::isfinite(start.speed_ms))) {
+    return fail("start speed_ms must be a finite speed >= 0 m/s");
+  }
+  return true;
+}
 
 JourneySolution solve_journey(const physics::Train& train,
                               const std::vector<physics::Route>& routes,
                               const std::vector<double>& dwells_s, double total_time_s,
                               const JourneyOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
   SectionLibraryOptions lo;
   lo.engine = options.engine;
   lo.search = options.search;
@@ -163,6 +289,9 @@ JourneySolution solve_journey(const physics::Train& train,
 JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, std::size_t last,
                               const std::vector<double>& dwells_s, double total_time_s,
                               const JourneyOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  const ThreadScope threads(options.engine.threads);
   const auto t0 = Clock::now();
   if (!(first < last && last <= library.size())) {
     throw std::invalid_argument("a journey needs sections [first, last) of the library");
@@ -186,7 +315,9 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   }
   out.build_wall_s = seconds_since(t0);
   if (total_time_s < min_total - options.search.tolerance_s) {
-    throw InfeasibleTimeError(total_time_s, min_total);
+    throw InfeasibleTimeError(total_time_s, min_total,
+                              routes.front().from_name() + " -> " + routes.back().to_name() +
+                                  " (sum of flat-out sections, dwells excluded)");
   }
 
   const auto t1 = Clock::now();
@@ -201,16 +332,13 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
     for (std::size_t i = 0; i < engines.size(); ++i) {
       const double share = total_time_s * remaining_m[i] / length;
       if (share < min_times[i]) {
-        char msg[300];
-        std::snprintf(msg, sizeof msg,
-                      "the proportional share %.2f s of section %s -> %s is below its minimum "
-                      "running time %.2f s",
-                      share, routes[i].from_name().c_str(), routes[i].to_name().c_str(),
-                      min_times[i]);
-        throw std::invalid_argument(msg);
+        throw TimeRequestError(format_text(
+            "the proportional share %.2f s of section %s -> %s is below its minimum running "
+            "time %.2f s",
+            share, routes[i].from_name().c_str(), routes[i].to_name().c_str(), min_times[i]));
       }
-      TimeSearchResult r = solve_for_time(*engines[i], share, options.search,
-                                          i == 0 ? options.start : StartState{});
+      TimeSearchResult r =
+          solve_for_time(*engines[i], share, options.search, i == 0 ? options.start : StartState{});
       out.lambda_evaluations += r.iterations;
       out.converged = out.converged && r.converged;
       runs.push_back(std::move(r.run));
@@ -267,6 +395,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
                            std::to_string(options.search.tolerance_s) + " s");
   }
   out.total_wall_s = seconds_since(t0);
+  summarise_journey(routes, min_total, options, out);
   return out;
 }
 
@@ -292,7 +421,10 @@ JourneySolution solve_journey_free_dwells(const SectionLibrary& library, std::si
                            : library.min_time_s(i);
   }
   if (trip_time_s < min_running + dwell_total - options.search.tolerance_s) {
-    throw InfeasibleTimeError(trip_time_s, min_running + dwell_total);
+    throw InfeasibleTimeError(trip_time_s, min_running + dwell_total,
+                              library.route(first).from_name() + " -> " +
+                                  library.route(last - 1).to_name() +
+                                  " (sum of flat-out sections plus minimum dwells)");
   }
   return solve_journey(library, first, last, chosen, trip_time_s - dwell_total, options);
 }

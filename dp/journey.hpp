@@ -5,20 +5,36 @@
 // the last hundredths are closed by trimming one section (first-order neutral, as in the
 // single-section search). The proportional split gives each section a share of the time in
 // proportion to its length and solves each on its own, for comparison with published methods.
+// Every solve returns a JourneySummary (termination, BriefReport, FullReport) like a section's;
+// options are checked (IsValid) before any work.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dp/regimes.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/section_library.hpp"
+#include "dp/termination.hpp"
 #include "dp/time_target.hpp"
+#include "physics/trip.hpp"
 
 namespace ecorail::dp {
 
 enum class Split { Optimal, Proportional };
+
+// Names to and from text, in one place: "optimal", "proportional".
+inline std::string_view split_name(Split s) {
+  return s == Split::Proportional ? "proportional" : "optimal";
+}
+inline std::optional<Split> split_from_name(std::string_view name) {
+  if (name == "optimal") return Split::Optimal;
+  if (name == "proportional") return Split::Proportional;
+  return std::nullopt;
+}
 
 struct JourneyOptions {
   EngineOptions engine;
@@ -34,6 +50,8 @@ struct JourneyOptions {
   // Where the train is in the first section (a restart mid-run): the journey is then the rest
   // of the run, and total_time_s the running time that remains.
   StartState start;
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct JourneySection {
@@ -42,6 +60,42 @@ struct JourneySection {
   double dwell_after_s = 0.0;     // at the section's arrival stop (0 for the last)
   double marginal_J_per_s = 0.0;  // -(dE/dT) measured by re-solving; NaN if not measured
   double min_time_s = 0.0;
+};
+
+// The report of a journey, under the same names and units as a section's (SectionSolveSummary:
+// kJ, s, km/h, m), with a Termination: CONVERGENCE when every section comes to rest at its stop
+// and the total running time is met, NO_CONVERGENCE when the stops are met but not the time,
+// FAILURE when a section misses its stop.
+struct JourneySummary {
+  std::string from, to;  // first and last stop
+  int sections = 0;
+  Split split = Split::Optimal;
+  double distance_m = 0.0;
+  double target_time_s = 0.0;
+  double min_time_s = 0.0;  // sum of the sections' flat-out runs
+  GridSpec grid;
+  int threads = 1;
+  Objective objective = Objective::Traction;
+  double lambda_J_per_s = 0.0;  // NaN for the proportional split
+  int lambda_evaluations = 0;
+  bool converged = false;  // same as termination == CONVERGENCE
+  Termination termination = Termination::FAILURE;
+  double build_wall_s = 0.0;
+  double search_wall_s = 0.0;
+  double total_wall_s = 0.0;
+  double running_time_s = 0.0;  // dwells excluded
+  double dwell_time_s = 0.0;
+  double traction_energy_kJ = 0.0;
+  double braking_energy_kJ = 0.0;
+  double regen_energy_kJ = 0.0;
+  double net_energy_kJ = 0.0;
+  double stop_error_m = 0.0;  // the largest of the sections', by size
+  double max_overspeed_kmh = 0.0;
+  std::vector<std::string> warnings;
+
+  std::string BriefReport() const;
+  std::string FullReport() const;
+  bool IsSolutionUsable() const { return is_usable(termination); }
 };
 
 struct JourneySolution {
@@ -59,6 +113,7 @@ struct JourneySolution {
   double search_wall_s = 0.0;
   double total_wall_s = 0.0;
   std::vector<std::string> warnings;
+  JourneySummary summary;
 };
 
 // Solves a journey over `routes` (consecutive sections) with `dwells_s[i]` after section i.
@@ -89,5 +144,11 @@ JourneySolution solve_journey_free_dwells(const SectionLibrary& library, std::si
 JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, std::size_t last,
                               const std::vector<double>& dwells_s, double total_time_s,
                               const JourneyOptions& options);
+
+// The journey laid out as one train's trip on a clock, departing at departure_s: the sections'
+// re-simulated runs end to end with their dwells (routes: the journey's, one per section).
+physics::Trip journey_trip(const JourneySolution& solution,
+                           const std::vector<physics::Route>& routes, double departure_s,
+                           double regen_efficiency);
 
 }  // namespace ecorail::dp

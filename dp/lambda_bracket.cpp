@@ -26,9 +26,20 @@ LambdaBracket::LambdaBracket(Function f, double x0, double step, int max_evaluat
   }
 }
 
+LambdaBracket::LambdaBracket(Function f, double x_lo, double f_lo, double x_hi, double f_hi,
+                             int max_evaluations)
+    : f_(std::move(f)),
+      max_evaluations_(max_evaluations),
+      x_lo_(x_lo),
+      f_lo_(f_lo),
+      x_hi_(x_hi),
+      f_hi_(f_hi) {}
+
 void LambdaBracket::narrow(const std::function<bool()>& done, double min_width) {
   while (bracketed() && !done() && evaluations_ < max_evaluations_ && x_hi_ - x_lo_ > min_width) {
-    double xm = (x_lo_ * f_hi_ - x_hi_ * f_lo_) / (f_hi_ - f_lo_);
+    double xm = std::isfinite(f_lo_) && std::isfinite(f_hi_)
+                    ? (x_lo_ * f_hi_ - x_hi_ * f_lo_) / (f_hi_ - f_lo_)
+                    : 0.5 * (x_lo_ + x_hi_);
     if (!(xm > x_lo_ && xm < x_hi_)) xm = 0.5 * (x_lo_ + x_hi_);
     const double fm = evaluate(xm);
     if (fm > 0.0) {

@@ -1,8 +1,12 @@
-// LambdaBracket: the root search shared by the single-section and the journey running-time
-// searches. With x = log(lambda), f(x) = running time - target falls as x grows. The bracket is
-// found by stepping x from a starting point until f changes sign, then narrowed by regula falsi
-// (Illinois variant, which halves a stale end's value so the bracket keeps shrinking from both
-// sides). The caller scores every evaluation itself and says when it is close enough.
+// LambdaBracket: the one root search of the engine, shared by the single-section and the journey
+// running-time searches and by the switch-point trim (there x is the position of the switch and
+// f the re-simulated time error; the second constructor takes the bracket it has found). With x =
+// log(lambda), f(x) = running time - target falls as x grows. The bracket is found by stepping x
+// from a starting point until f changes sign, then narrowed by regula falsi (Illinois variant,
+// which halves a stale end's value so the bracket keeps shrinking from both sides). The caller
+// scores every evaluation itself and says when it is close enough. f may return +infinity for "no
+// usable run, treat as too slow" (a run that does not reach the stop); an infinite end makes the
+// step a bisection.
 #pragma once
 
 #include <functional>
@@ -16,6 +20,9 @@ class LambdaBracket {
   // Evaluates f at x0 and steps by `step` (in log lambda) until the root is bracketed, within
   // lambda in [1, 1e12] J/s and the evaluation budget.
   LambdaBracket(Function f, double x0, double step, int max_evaluations);
+  // A bracket already known: f(x_lo) = f_lo >= 0, f(x_hi) = f_hi <= 0, x_lo < x_hi.
+  LambdaBracket(Function f, double x_lo, double f_lo, double x_hi, double f_hi,
+                int max_evaluations);
   // Narrows until done() holds, the bracket is narrower than min_width (a jump of the ragged
   // running time lies inside it) or the budget is spent.
   void narrow(const std::function<bool()>& done, double min_width = 1e-4);

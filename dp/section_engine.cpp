@@ -1,15 +1,56 @@
 #include "dp/section_engine.hpp"
 
+#include <cmath>
+#include <stdexcept>
+
+#include "dp/threads.hpp"
+
 namespace ecorail::dp {
+
+bool EngineOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(grid.ds_m > 0.0 && grid.ds_m <= 100.0)) return fail("grid ds_m must be in (0, 100] m");
+  if (!(grid.dv_kmh > 0.0 && grid.dv_kmh <= 10.0)) {
+    return fail("grid dv_kmh must be in (0, 10] km/h");
+  }
+  if (!(grid.substep_m > 0.0 && grid.substep_m <= grid.ds_m)) {
+    return fail("grid substep_m must be in (0, ds_m]");
+  }
+  if (objective != Objective::Traction && objective != Objective::Net) {
+    return fail("objective must be traction or net");
+  }
+  if (!(resim_step_m > 0.0 && resim_step_m <= 1.0)) return fail("resim_step_m must be in (0, 1] m");
+  if (!(envelope_resolution_m > 0.0 && envelope_resolution_m <= 10.0)) {
+    return fail("envelope_resolution_m must be in (0, 10] m");
+  }
+  if (!(decision_step_m > 0.0 && std::isfinite(decision_step_m))) {
+    return fail("decision_step_m must be a positive number of metres");
+  }
+  if (threads < 0) return fail("threads must be 0 (OpenMP's default) or more");
+  return true;
+}
+
+namespace {
+// Options are checked before any work (the envelope and the table are the expensive part).
+const EngineOptions& validated(const EngineOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  return options;
+}
+}  // namespace
 
 SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
                              const EngineOptions& options)
     : train_(train),
       route_(route),
-      options_(options),
+      options_(validated(options)),
       envelope_(train_, route_, options.envelope_resolution_m),
       motion_(train_, route_, envelope_),
       grid_(envelope_, route_.length_m(), options.grid) {
+  const ThreadScope threads(options_.threads);
   table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
 }
 
@@ -28,6 +69,7 @@ double SectionEngine::energy_cost_J(const physics::SimulationResult& sim) const 
 }
 
 ValueFunction SectionEngine::sweep(double lambda) const {
+  const ThreadScope threads(options_.threads);
   ValueFunction value;
   backward_sweep(grid_, *table_, lambda, value);
   return value;

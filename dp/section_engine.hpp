@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "dp/backward_sweep.hpp"
 #include "dp/objective.hpp"
@@ -23,6 +24,11 @@ struct EngineOptions {
   double resim_step_m = 0.05;  // fine step of the forward re-simulation (RK4)
   double envelope_resolution_m = 0.1;
   double decision_step_m = 1.0;  // policy extraction
+  // OpenMP threads for this engine's parallel parts (0: OpenMP's default). Results do not
+  // depend on it (tested); see dp/threads.hpp.
+  int threads = 0;
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const;
 };
 
 // Where a run starts: at rest at the departure stop, or mid-run (a restart) at a position and

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "dp/text_format.hpp"
+#include "dp/threads.hpp"
 
 namespace ecorail::dp {
 
@@ -25,18 +26,7 @@ bool SectionLibraryOptions::IsValid(std::string* error) const {
     if (error) *error = why;
     return false;
   };
-  const GridSpec& g = engine.grid;
-  if (!(g.ds_m > 0.0 && g.ds_m <= 100.0)) return fail("grid ds_m must be in (0, 100] m");
-  if (!(g.dv_kmh > 0.0 && g.dv_kmh <= 10.0)) return fail("grid dv_kmh must be in (0, 10] km/h");
-  if (!(g.substep_m > 0.0 && g.substep_m <= g.ds_m)) {
-    return fail("grid substep_m must be in (0, ds_m]");
-  }
-  if (!(engine.resim_step_m > 0.0 && engine.resim_step_m <= 1.0)) {
-    return fail("resim_step_m must be in (0, 1] m");
-  }
-  if (!(search.tolerance_s > 0.0 && std::isfinite(search.tolerance_s))) {
-    return fail("search tolerance_s must be a positive number of seconds");
-  }
+  if (!engine.IsValid(error) || !search.IsValid(error)) return false;
   if (!(frontier_span_s > 0.0 && std::isfinite(frontier_span_s))) {
     return fail("frontier_span_s must be a positive number of seconds");
   }
@@ -186,11 +176,13 @@ void side_by_side(std::size_t first, std::size_t last, const Job& job) {
 }  // namespace
 
 void SectionLibrary::build_engines(std::size_t first, std::size_t last) const {
+  const ThreadScope threads(options_.engine.threads);
   side_by_side(first, last, [&](std::size_t i) { engine(i); });
 }
 
 void SectionLibrary::build_frontiers(std::size_t first, std::size_t last,
                                      FrontierStore* store) const {
+  const ThreadScope threads(options_.engine.threads);
   side_by_side(first, last, [&](std::size_t i) { frontier(i, store); });
 }
 

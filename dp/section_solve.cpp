@@ -7,12 +7,13 @@
 #include <cstdio>
 
 #include "dp/text_format.hpp"
+#include "dp/threads.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
 
 bool run_meets_targets(const physics::SimulationResult& sim, double target_time_s) {
-  return !sim.stopped_early && std::abs(sim.stop_error_m) <= kStopTolerance_m &&
+  return run_arrives(sim) &&
          (target_time_s <= 0.0 || std::abs(sim.running_time_s - target_time_s) <= kTimeTolerance_s);
 }
 
@@ -44,6 +45,9 @@ void summarise_run(const physics::SimulationResult& sim, double target_time_s,
 
 SectionSolution solve_section(const physics::Train& train, const physics::Route& route,
                               double target_time_s, const SectionSolveOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  const ThreadScope threads(options.engine.threads);
   const auto t0 = std::chrono::steady_clock::now();
   SectionEngine engine(train, route, options.engine);
   const auto t1 = std::chrono::steady_clock::now();
@@ -68,14 +72,15 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.lambda_evaluations = found.iterations;
   s.trim_simulations = found.trim_iterations;
   s.trim_shift_m = found.trim_shift_m;
-  s.converged = found.converged;
   s.build_wall_s = std::chrono::duration<double>(t1 - t0).count();
   s.search_wall_s = std::chrono::duration<double>(t2 - t1).count();
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
   summarise_run(out.run.sim, target_time_s, s);
   // A run that misses its stop or its time is never a converged result, whatever the search
   // reported (see SectionSolveSummary::IsSolutionUsable).
-  if (!run_meets_targets(out.run.sim, target_time_s)) s.converged = false;
+  s.termination = termination_of(run_arrives(out.run.sim),
+                                 found.converged && run_meets_targets(out.run.sim, target_time_s));
+  s.converged = s.termination == Termination::CONVERGENCE;
   if (!found.converged) {
     s.warnings.push_back(
         format_text("running-time search did not converge to %.3f s", options.search.tolerance_s));
@@ -90,7 +95,7 @@ std::string SectionSolveSummary::BriefReport() const {
       "%.3f s wall, %s",
       from.c_str(), to.c_str(), distance_m, running_time_s, traction_energy_kJ, regen_energy_kJ,
       stop_error_m, max_overspeed_kmh, lambda_J_per_s / 1000.0, lambda_evaluations, total_wall_s,
-      converged && warnings.empty() ? "CONVERGENCE" : "WARNINGS");
+      std::string(status_word(termination, warnings.size())).c_str());
   return r + "\n";
 }
 
@@ -120,7 +125,8 @@ std::string SectionSolveSummary::FullReport() const {
   r += format_text("  %-28s %.3f kJ\n", "Net energy", net_energy_kJ);
   r += format_text("  %-28s %.4f m\n", "Stop error", stop_error_m);
   r += format_text("  %-28s %.4f km/h\n", "Max overspeed", max_overspeed_kmh);
-  r += format_text("\n  %-28s %s\n", "Termination", converged ? "CONVERGENCE" : "NO_CONVERGENCE");
+  r += format_text("\n  %-28s %s\n", "Termination",
+                   std::string(termination_name(termination)).c_str());
   for (const auto& w : warnings) r += "  warning: " + w + "\n";
   return r;
 }

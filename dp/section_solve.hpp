@@ -1,7 +1,8 @@
 // solve_section: the single-section job end to end. Builds the engine for a train and route,
 // searches the time price for the requested running time, re-simulates, lists the regimes and
-// returns a Summary that reads like Ceres' solver summary (BriefReport for one paragraph,
-// FullReport for everything: problem, grid, search, timing, result, warnings).
+// returns a Summary that reads like Ceres' solver summary (a Termination, IsSolutionUsable,
+// BriefReport for one line, FullReport for everything: problem, grid, search, timing, result,
+// warnings). Options are checked (IsValid) before any work: std::invalid_argument.
 #pragma once
 
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "dp/regimes.hpp"
 #include "dp/section_engine.hpp"
+#include "dp/termination.hpp"
 #include "dp/time_target.hpp"
 
 namespace ecorail::dp {
@@ -16,6 +18,8 @@ namespace ecorail::dp {
 struct SectionSolveOptions {
   EngineOptions engine;
   TimeSearchOptions search;
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const { return engine.IsValid(error) && search.IsValid(error); }
 };
 
 struct SectionSolveSummary {
@@ -32,7 +36,8 @@ struct SectionSolveSummary {
   int lambda_evaluations = 0;
   int trim_simulations = 0;
   double trim_shift_m = 0.0;
-  bool converged = false;
+  bool converged = false;  // same as termination == CONVERGENCE
+  Termination termination = Termination::FAILURE;
   double build_wall_s = 0.0;
   double search_wall_s = 0.0;
   double total_wall_s = 0.0;
@@ -48,7 +53,7 @@ struct SectionSolveSummary {
   std::string BriefReport() const;
   std::string FullReport() const;
   // False when the run misses its stop or its time: such a run must not be written as a result.
-  bool IsSolutionUsable() const { return converged; }
+  bool IsSolutionUsable() const { return is_usable(termination); }
 };
 
 struct SectionSolution {
@@ -60,10 +65,8 @@ struct SectionSolution {
 SectionSolution solve_section(const physics::Train& train, const physics::Route& route,
                               double target_time_s, const SectionSolveOptions& options);
 
-// What a result must meet: it comes to rest at the stop (within kStopTolerance_m) and, for a
-// target time, runs within kTimeTolerance_s of it.
-inline constexpr double kStopTolerance_m = 0.5;
-inline constexpr double kTimeTolerance_s = 0.1;
+// What a result must meet (kStopTolerance_m, kTimeTolerance_s: dp/time_target.hpp): it comes
+// to rest at the stop and, for a target time, runs within the tolerance of it.
 bool run_meets_targets(const physics::SimulationResult& sim, double target_time_s);
 
 // Fills the result part of a summary (energies, time, stop, overspeed, warnings) from a run.

@@ -1,6 +1,8 @@
 #include "dp/time_target.hpp"
 
 #include "dp/lambda_bracket.hpp"
+#include "dp/text_format.hpp"
+#include "physics/units.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +12,15 @@
 namespace ecorail::dp {
 
 namespace {
+std::string long_message(double requested, double maximum) {
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "running time %.2f s is above the longest running time of %.2f s this engine "
+                "solves reliably for this section on this grid",
+                requested, maximum);
+  return buf;
+}
+
 std::string infeasible_message(double requested, double minimum) {
   char buf[200];
   std::snprintf(buf, sizeof buf,
@@ -20,8 +31,69 @@ std::string infeasible_message(double requested, double minimum) {
 }
 }  // namespace
 
-InfeasibleTimeError::InfeasibleTimeError(double requested_s, double minimum_s)
-    : std::invalid_argument(infeasible_message(requested_s, minimum_s)), minimum_s_(minimum_s) {}
+InfeasibleTimeError::InfeasibleTimeError(double requested_s, double minimum_s, std::string subject)
+    : TimeRequestError(infeasible_message(requested_s, minimum_s)),
+      minimum_s_(minimum_s),
+      requested_s_(requested_s),
+      subject_(std::move(subject)) {}
+
+LongTimeError::LongTimeError(double requested_s, double maximum_s)
+    : TimeRequestError(long_message(requested_s, maximum_s)), maximum_s_(maximum_s) {}
+
+bool TimeSearchOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(tolerance_s > 0.0 && tolerance_s <= kTimeTolerance_s)) {
+    return fail("search tolerance_s must be in (0, 0.1] s");
+  }
+  if (!(lambda_tolerance_s >= tolerance_s && std::isfinite(lambda_tolerance_s))) {
+    return fail("search lambda_tolerance_s must be a finite number of seconds >= tolerance_s");
+  }
+  if (max_iterations < 1) return fail("search max_iterations must be at least 1");
+  if (!(lambda_guess > 0.0 && std::isfinite(lambda_guess))) {
+    return fail("search lambda_guess must be a positive price in J/s");
+  }
+  if (!(bracket_factor > 1.0 && std::isfinite(bracket_factor))) {
+    return fail("search bracket_factor must be a finite factor > 1");
+  }
+  return true;
+}
+
+bool run_arrives(const physics::SimulationResult& sim) {
+  return !sim.stopped_early && std::abs(sim.stop_error_m) <= kStopTolerance_m;
+}
+
+SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start) {
+  SlowLimit out;
+  // True when the run at exp(x) arrives and is slower than every run before it.
+  auto slower = [&](double x) {
+    LambdaRun run = engine.run(std::exp(x), start);
+    ++out.evaluations;
+    if (!run_arrives(run.sim) || run.sim.running_time_s <= out.max_time_s) return false;
+    out.max_time_s = run.sim.running_time_s;
+    out.lambda_J_per_s = run.lambda;
+    out.scan.emplace_back(run.lambda, run.sim.running_time_s);
+    out.run = std::move(run);
+    return true;
+  };
+  double x_good = NAN, x_bad = NAN;
+  // Down to lambda = 1 J/s, a price far below any useful one.
+  for (double x = std::log(kSlowScanStart_J_per_s); x >= 0.0; x -= std::log(2.0)) {
+    if (!slower(x)) {
+      x_bad = x;
+      break;
+    }
+    x_good = x;
+  }
+  if (std::isnan(x_good) || std::isnan(x_bad)) return out;
+  for (int k = 0; k < kSlowScanRefinements; ++k) {
+    const double mid = 0.5 * (x_good + x_bad);
+    (slower(mid) ? x_good : x_bad) = mid;
+  }
+  return out;
+}
 
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
                                 const TimeSearchOptions& options, const StartState& start) {
@@ -30,19 +102,36 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
     throw std::invalid_argument("the train cannot reach the end of the section from this state");
   }
   const double t_min = flat_out.running_time_s;
-  if (target < t_min - options.tolerance_s) throw InfeasibleTimeError(target, t_min);
+  if (target < t_min - options.tolerance_s) {
+    const std::string section = engine.route().from_name() + " -> " + engine.route().to_name();
+    throw InfeasibleTimeError(
+        target, t_min,
+        start.at_departure()
+            ? section + " (flat-out run)"
+            : format_text("the rest of %s from %.1f m at %.1f km/h "
+                          "(flat-out run)",
+                          section.c_str(), start.position_m, units::ms_to_kmh(start.speed_ms)));
+  }
 
   TimeSearchResult out;
   bool have_best = false;
-  auto error_of_best = [&] { return std::abs(out.run.sim.running_time_s - target); };
-  auto evaluate = [&](double x) {
-    LambdaRun run = engine.run(std::exp(x), start);
-    ++out.iterations;
-    const double f = run.sim.running_time_s - target;
-    if (!have_best || std::abs(f) < error_of_best()) {
+  // A run that does not arrive is no candidate: it scores infinitely far from the target and,
+  // for the bracket, counts as too slow (it comes from a price below the slow limit).
+  auto error_of = [&](const LambdaRun& run) {
+    return run_arrives(run.sim) ? std::abs(run.sim.running_time_s - target) : INFINITY;
+  };
+  auto error_of_best = [&] { return have_best ? error_of(out.run) : INFINITY; };
+  auto consider = [&](LambdaRun run) {
+    if (!have_best || error_of(run) < error_of_best()) {
       out.run = std::move(run);
       have_best = true;
     }
+  };
+  auto evaluate = [&](double x) {
+    LambdaRun run = engine.run(std::exp(x), start);
+    ++out.iterations;
+    const double f = run_arrives(run.sim) ? run.sim.running_time_s - target : INFINITY;
+    consider(std::move(run));
     return f;
   };
   auto trimmed = [&] {
@@ -62,21 +151,53 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   // on to the fine tolerance without it.
   const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,
                            options.tolerance_s};
-  for (double tolerance : phases) {
-    bracket.narrow([&] { return error_of_best() <= tolerance; });
-    if (error_of_best() <= options.tolerance_s || trimmed()) {
-      out.converged = true;
-      return out;
+  auto close = [&](LambdaBracket& b) {
+    for (double tolerance : phases) {
+      b.narrow([&] { return error_of_best() <= tolerance; });
+      if (error_of_best() <= options.tolerance_s || trimmed()) return true;
     }
+    return false;
+  };
+  if (close(bracket)) {
+    out.converged = true;
+    return out;
   }
-  out.converged = error_of_best() <= options.tolerance_s;
+  // Not met. Either the time is beyond the slow limit (refused, like one below the flat-out
+  // run), or the bracket held prices below it: search again between the slow limit's price and
+  // the nearest faster run of its scan, where running time grows as lambda falls.
+  SlowLimit limit = find_slow_limit(engine, start);
+  out.iterations += limit.evaluations;
+  out.max_time_s = limit.max_time_s;
+  if (limit.scan.empty()) return out;
+  if (target > limit.max_time_s + options.tolerance_s) {
+    throw LongTimeError(target, limit.max_time_s);
+  }
+  double x_lo = std::log(limit.lambda_J_per_s), f_lo = limit.max_time_s - target;
+  double x_hi = std::log(1e9), f_hi = NAN;
+  for (const auto& [lambda, time] : limit.scan) {
+    if (time < target) x_hi = std::log(lambda), f_hi = time - target;
+  }
+  consider(std::move(limit.run));
+  if (std::isnan(f_hi)) f_hi = evaluate(x_hi);
+  LambdaBracket slow_side(evaluate, x_lo, f_lo, x_hi, f_hi, options.max_iterations);
+  out.converged = close(slow_side);
   return out;
 }
+
+namespace {
+// The trim's root search in one switch position: at most this many re-simulations, down to a
+// bracket this narrow.
+constexpr int kTrimEvaluations = 40;
+constexpr double kTrimMinWidth_m = 1e-9;
+}  // namespace
 
 bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s,
                   TimeSearchResult& result) {
   LambdaRun& run = result.run;
-  auto error = [&](const physics::SimulationResult& sim) { return sim.running_time_s - target; };
+  // A re-simulation that does not arrive counts as too slow and is never accepted.
+  auto error = [&](const physics::SimulationResult& sim) {
+    return run_arrives(sim) ? sim.running_time_s - target : INFINITY;
+  };
   if (std::abs(error(run.sim)) <= tolerance_s) return true;
   const physics::ControlProgram program = run.program;
   const double length = engine.route().length_m();
@@ -154,29 +275,29 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     if (std::isnan(f_lo)) f_lo = evaluate(lo, &trial, &sim);
     if (std::isnan(f_hi)) f_hi = evaluate(hi, &trial, &sim);
     if (!(f_lo >= 0.0 && f_hi <= 0.0)) continue;  // this switch cannot reach the target
-    // Illinois regula falsi on [lo, hi].
-    int side = 0;
-    for (int it = 0; it < 40; ++it) {
-      double x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-      const double f = evaluate(x, &trial, &sim);
-      if (std::abs(f) <= tolerance_s) {
-        run.program = std::move(trial);
-        run.sim = std::move(sim);
-        run.cost_J = engine.energy_cost_J(run.sim);
-        result.trim_shift_m = x - x0;
-        return true;
-      }
-      if (f > 0.0) {
-        lo = x, f_lo = f;
-        if (side == -1) f_hi *= 0.5;
-        side = -1;
-      } else {
-        hi = x, f_hi = f;
-        if (side == 1) f_lo *= 0.5;
-        side = 1;
-      }
-      if (hi - lo < 1e-9) break;
+    // Close the bracket with the one root search of the engine (LambdaBracket: Illinois regula
+    // falsi), here in the switch position; only its own evaluations may be accepted.
+    struct Last {
+      bool valid = false;
+      double x = 0.0, f = 0.0;
+      physics::ControlProgram program;
+      physics::SimulationResult sim;
+    } last;
+    LambdaBracket root(
+        [&](double x) {
+          last.f = evaluate(x, &last.program, &last.sim);
+          last.x = x;
+          last.valid = true;
+          return last.f;
+        },
+        lo, f_lo, hi, f_hi, kTrimEvaluations);
+    root.narrow([&] { return last.valid && std::abs(last.f) <= tolerance_s; }, kTrimMinWidth_m);
+    if (last.valid && std::abs(last.f) <= tolerance_s) {
+      run.program = std::move(last.program);
+      run.sim = std::move(last.sim);
+      run.cost_J = engine.energy_cost_J(run.sim);
+      result.trim_shift_m = last.x - x0;
+      return true;
     }
   }
   return false;

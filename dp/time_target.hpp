@@ -8,24 +8,81 @@
 // last hundredths are closed by trimming one switch point out of full traction: at an optimum
 // the marginal energy per second of moving any switch point equals lambda, so the trim moves
 // along the frontier and costs only a second-order error.
+//
+// Long running times have an upper end too. From rest the first grid step admits only full
+// traction (every other control stalls at v = 0), and at low speeds a coast that the grid
+// believes reaches the next stage (its end speed interpolated towards the v = 0 node) may stall
+// in the continuous re-simulation: below some price the extracted run comes to rest before the
+// station, or the running time stops growing as lambda falls. So a run that does not arrive is
+// never a candidate of the search (it counts as "too slow"), and when a time cannot be met the
+// engine measures the longest running time it solves reliably (find_slow_limit) and refuses a
+// longer one with LongTimeError, as it refuses one below the flat-out run.
 #pragma once
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dp/section_engine.hpp"
 
 namespace ecorail::dp {
 
-// The requested running time is shorter than the flat-out run.
-class InfeasibleTimeError : public std::invalid_argument {
+// A running time the engine cannot solve: the base of the errors below (and of a journey's
+// proportional share that falls below a section's minimum). what() says what went wrong.
+class TimeRequestError : public std::invalid_argument {
  public:
-  InfeasibleTimeError(double requested_s, double minimum_s);
+  using std::invalid_argument::invalid_argument;
+};
+
+// The requested running time is shorter than the flat-out run. subject (may be empty) says
+// what the minimum is of, e.g. "A6 -> A7 (flat-out run)", so a caller can phrase its own message.
+class InfeasibleTimeError : public TimeRequestError {
+ public:
+  InfeasibleTimeError(double requested_s, double minimum_s, std::string subject = "");
   double minimum_s() const { return minimum_s_; }
+  double requested_s() const { return requested_s_; }
+  const std::string& subject() const { return subject_; }
 
  private:
   double minimum_s_;
+  double requested_s_;
+  std::string subject_;
 };
+
+// The longest running time the engine solves reliably for a section is below the request.
+class LongTimeError : public TimeRequestError {
+ public:
+  LongTimeError(double requested_s, double maximum_s);
+  double maximum_s() const { return maximum_s_; }
+
+ private:
+  double maximum_s_;
+};
+
+// What every result must meet: it comes to rest at the stop (within kStopTolerance_m) and, for
+// a target time, runs within kTimeTolerance_s of it.
+inline constexpr double kStopTolerance_m = 0.5;
+inline constexpr double kTimeTolerance_s = 0.1;
+// The run comes to rest at the end of the section (not before it, not past it).
+bool run_arrives(const physics::SimulationResult& sim);
+
+// The slow end of what the engine solves: lambda is lowered from kSlowScanStart_J_per_s by
+// halves while the run still arrives and its running time still grows, then the last step is
+// bisected (kSlowScanRefinements times in log lambda). max_time_s is the longest arriving run
+// found and lambda_J_per_s its price; below that price the grid's slow runs are not trusted.
+// Depends on the engine and the start state only, so every command states the same limit.
+struct SlowLimit {
+  double max_time_s = 0.0;
+  double lambda_J_per_s = 0.0;
+  LambdaRun run;
+  int evaluations = 0;
+  // Every arriving run of the scan, by falling lambda: (lambda, running time).
+  std::vector<std::pair<double, double>> scan;
+};
+inline constexpr double kSlowScanStart_J_per_s = 3e5;
+inline constexpr int kSlowScanRefinements = 6;
+SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start = {});
 
 struct TimeSearchOptions {
   double tolerance_s = 0.001;        // final, after the trim
@@ -34,6 +91,8 @@ struct TimeSearchOptions {
   int max_iterations = 60;
   double lambda_guess = 3e5;    // J/s; only a starting point
   double bracket_factor = 4.0;  // lambda is multiplied or divided by this while bracketing
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct TimeSearchResult {
@@ -42,6 +101,8 @@ struct TimeSearchResult {
   int trim_iterations = 0;  // re-simulations of the trim
   double trim_shift_m = 0.0;
   bool converged = false;
+  // Measured when the search could not meet a time (0: not measured).
+  double max_time_s = 0.0;
 };
 
 // Moves one switch point out of full traction so the re-simulated time matches the target.
@@ -50,7 +111,9 @@ bool trim_to_time(const SectionEngine& engine, double target_time_s, double tole
                   TimeSearchResult& result);
 
 // From rest at the departure, or (start given) for the rest of the section from a mid-run state
-// in the remaining running time target_time_s.
+// in the remaining running time target_time_s. InfeasibleTimeError below the flat-out time,
+// LongTimeError above the slow limit; otherwise converged says whether the time was met by a
+// run that arrives.
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target_time_s,
                                 const TimeSearchOptions& options, const StartState& start = {});
 

@@ -14,9 +14,9 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "dp/advisor.hpp"
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
+#include "policy/advisor.hpp"
 
 using namespace ecorail;
 
@@ -26,7 +26,7 @@ constexpr double kTimetable_s = 110.0;
 
 // Runs the plant (train + its own envelope) with the advisor in the loop. With time keeping, the
 // layer is re-chosen every 10 m as the one whose expected time-to-go best fits the time left.
-physics::SimulationResult drive(const dp::Advisor& advisor, const physics::Train& plant_train,
+physics::SimulationResult drive(const policy::Advisor& advisor, const physics::Train& plant_train,
                                 const data::Line& line, bool keep_time, bool print) {
   const physics::Route route = data::build_route(line, "A6", "A7", plant_train);
   const physics::SpeedEnvelope envelope(plant_train, route);
@@ -41,7 +41,7 @@ physics::SimulationResult drive(const dp::Advisor& advisor, const physics::Train
       layer = advisor.layer_for_time(s, v, kTimetable_s - clock_s);
       chosen_at = s;
     }
-    const dp::Advice a = advisor.advise(layer, s, v);
+    const policy::Advice a = advisor.advise(layer, s, v);
     if (print && s >= next_print) {
       std::printf(
           "  %7.1f m %6.2f km/h t %6.2f s: %-12s %-16s %8.1f kN, expect %6.2f s and "
@@ -78,24 +78,24 @@ int main(int argc, char** argv) {
   // 1. The table: engine, lambda for each running time of the ladder, one layer each.
   const physics::Route route = data::build_route(line, "A6", "A7", train);
   const dp::SectionEngine engine(train, route, {});
-  dp::PolicyTable table =
-      dp::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
+  policy::PolicyTable table =
+      policy::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
   double optimum_kJ = 0.0;
   for (double offset : {-2.0, 0.0, 2.0}) {
     const dp::TimeSearchResult found = dp::solve_for_time(engine, kTimetable_s + offset, {});
     if (offset == 0.0) optimum_kJ = units::J_to_kJ(found.run.sim.energy.traction_work_J);
-    dp::PolicyLayer layer = dp::build_policy_layer(engine, found.run.lambda);
+    policy::PolicyLayer layer = policy::build_policy_layer(engine, found.run.lambda);
     layer.time_offset_s = offset;
     layer.target_time_s = kTimetable_s + offset;
     table.layers.push_back(std::move(layer));
   }
-  dp::save_policy(table, path);
+  policy::save_policy(table, path);
   std::printf("policy table %s: %d stages, %d nodes, %zu layers, %ju bytes\n",
               path.string().c_str(), table.stage_count(), table.node_count(), table.layers.size(),
               static_cast<std::uintmax_t>(std::filesystem::file_size(path)));
 
   // 2. On board: load and check against the line and train in use.
-  const dp::Advisor advisor = dp::Advisor::load(path, line, train);
+  const policy::Advisor advisor = policy::Advisor::load(path, line, train);
   std::printf("optimal run (solve_for_time): traction %.1f kJ in %.3f s\n", optimum_kJ,
               kTimetable_s);
 
@@ -108,9 +108,9 @@ int main(int argc, char** argv) {
   ok &= report("5 % heavier, nominal layer", drive(advisor, heavy, line, false, false));
   ok &= report("5 % heavier, ladder keeping time", drive(advisor, heavy, line, true, false));
   try {
-    dp::Advisor wrong = dp::Advisor::load(path, line, heavy);
+    policy::Advisor wrong = policy::Advisor::load(path, line, heavy);
     ok = false;
-  } catch (const dp::PolicyMismatchError& e) {
+  } catch (const policy::PolicyMismatchError& e) {
     std::printf("loading the table for the heavier train is refused: %s\n", e.what());
   }
   if (argc <= 1) std::filesystem::remove(path);  // keep the table only when asked for a path

@@ -32,6 +32,16 @@ const FormulationSummary& Summary::primary() const {
   return results.at(0);
 }
 
+const FormulationSummary& Summary::converged_primary() const {
+  const FormulationSummary& r = primary();
+  if (!r.fit.converged) {
+    throw NotConvergedError(std::string(method_name(r.method)) + " fit ended " + r.fit.termination +
+                            " after " + std::to_string(r.fit.iterations) +
+                            " iterations: no calibrated train written");
+  }
+  return r;
+}
+
 const FormulationSummary* Summary::find(Method m) const {
   for (const auto& r : results) {
     if (r.method == m) return &r;
@@ -75,6 +85,7 @@ Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
   s.options = options;
   s.base = base;
   for (const auto& l : logs) s.logs.push_back(l.label);
+  check_logs_plausible(logs, base, options.plausibility);
   s.data = prepare_logs(logs, base, options.prep);
 
   ModelConstants k;

@@ -8,11 +8,13 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "fitting/formulation.hpp"
 #include "fitting/identifiability.hpp"
+#include "fitting/log_plausibility.hpp"
 #include "fitting/log_prep.hpp"
 #include "fitting/log_reader.hpp"
 #include "fitting/output_error.hpp"
@@ -41,6 +43,7 @@ struct CalibrationOptions {
   bool apply_accel_limits = true;
   OutputErrorOptions output_error;
   PrepOptions prep;
+  PlausibilityOptions plausibility;  // rows no train of the model could produce are refused
   IdentifiabilityOptions identifiability;
   int max_iterations = 100;
   int num_threads = 1;
@@ -78,12 +81,22 @@ struct Summary {
 
   // The result written to train files: output error when it ran, else equation error.
   const FormulationSummary& primary() const;
+  // primary(), for writing: throws NotConvergedError when its fit did not converge, because a
+  // fit Ceres stopped early (NO_CONVERGENCE, an iteration limit) is not an estimate.
+  const FormulationSummary& converged_primary() const;
   const FormulationSummary* find(Method m) const;
   std::string BriefReport() const;
   std::string FullReport() const;
 };
 
-// Runs the calibration; throws data::InputError for unusable logs or unidentifiable parameters.
+// A calibration whose written result did not converge (see Summary::converged_primary).
+class NotConvergedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Runs the calibration; throws data::InputError for unusable logs (physically impossible rows
+// included, see log_plausibility.hpp) or unidentifiable parameters.
 Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
                   const CalibrationOptions& options);
 

@@ -130,6 +130,7 @@ Log parse_log(std::string_view text, const std::string& label) {
   log.format = (time_hms && speed_cm_s && traction && cols.find("traction_power_kW"))
                    ? LogFormat::Published
                    : LogFormat::Plain;
+  log.speed_column = cols.name(speed_ms ? *speed_ms : speed_cm_s ? *speed_cm_s : *speed_kmh);
   log.has_position = position.has_value() || km_post.has_value();
   log.has_gradient = gradient.has_value();
   log.has_curve = curve.has_value();

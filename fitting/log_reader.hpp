@@ -36,6 +36,7 @@ struct LogRow {
 struct Log {
   std::string label;  // file name, for messages
   LogFormat format = LogFormat::Plain;
+  std::string speed_column = "speed_kmh";  // as spelt in the file, for messages
   std::vector<LogRow> rows;
   bool has_position = false;
   bool has_gradient = false;

@@ -2,11 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
-
-#include <unistd.h>
 
 #include "data/atomic_file.hpp"
 #include "physics/units.hpp"
@@ -38,15 +35,21 @@ nlohmann::json frontier_json(const LabelledFrontier& lf) {
   for (const auto& w : f.wobbles) {
     wobbles.push_back({{"time_s", w.time_s}, {"kind", w.kind}, {"size_kJ", w.size_J / 1000.0}});
   }
-  return {{"from", lf.from},        {"to", lf.to},        {"min_running_time_s", f.min_time_s},
-          {"monotone", f.monotone}, {"convex", f.convex}, {"wobbles", wobbles},
-          {"points", points}};
+  return {{"from", lf.from},
+          {"to", lf.to},
+          {"min_running_time_s", f.min_time_s},
+          {"monotone", f.monotone},
+          {"convex", f.convex},
+          {"wobbles", wobbles},
+          {"points", points},
+          {"from_cache", lf.from_cache}};
 }
 
 LabelledFrontier frontier_from_json(const nlohmann::json& j) {
   LabelledFrontier lf;
   lf.from = j.at("from").get<std::string>();
   lf.to = j.at("to").get<std::string>();
+  lf.from_cache = true;
   dp::Frontier& f = lf.frontier;
   f.min_time_s = j.at("min_running_time_s").get<double>();
   f.monotone = j.at("monotone").get<bool>();
@@ -68,73 +71,99 @@ LabelledFrontier frontier_from_json(const nlohmann::json& j) {
   return lf;
 }
 
+void write_frontiers_csv(std::ostream& out, const std::vector<LabelledFrontier>& frontiers) {
+  out << "from,to,target_time_s,running_time_s,traction_energy_kJ,regen_energy_kJ,"
+         "net_energy_kJ,lambda_kJ_per_s,converged,wobble\n";
+  char buf[400];
+  for (const auto& lf : frontiers) {
+    for (const auto& p : lf.frontier.points) {
+      std::string wobble;
+      for (const auto& w : lf.frontier.wobbles) {
+        if (w.time_s == p.target_time_s) wobble += (wobble.empty() ? "" : ";") + w.kind;
+      }
+      std::snprintf(buf, sizeof buf, "%s,%s,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%d,%s\n", lf.from.c_str(),
+                    lf.to.c_str(), p.target_time_s, p.running_time_s,
+                    units::J_to_kJ(p.traction_work_J), units::J_to_kJ(p.regen_J),
+                    units::J_to_kJ(p.net_J), p.lambda_J_per_s / 1000.0, p.converged ? 1 : 0,
+                    wobble.c_str());
+      out << buf;
+    }
+  }
+}
+
 void write_frontiers_csv(const std::filesystem::path& path,
                          const std::vector<LabelledFrontier>& frontiers) {
-  data::write_atomically(path, [&](std::ostream& out) {
-    out << "from,to,target_time_s,running_time_s,traction_energy_kJ,regen_energy_kJ,"
-           "net_energy_kJ,lambda_kJ_per_s,converged,wobble\n";
-    char buf[400];
-    for (const auto& lf : frontiers) {
-      for (const auto& p : lf.frontier.points) {
-        std::string wobble;
-        for (const auto& w : lf.frontier.wobbles) {
-          if (w.time_s == p.target_time_s) wobble += (wobble.empty() ? "" : ";") + w.kind;
-        }
-        std::snprintf(buf, sizeof buf, "%s,%s,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%d,%s\n",
-                      lf.from.c_str(), lf.to.c_str(), p.target_time_s, p.running_time_s,
-                      units::J_to_kJ(p.traction_work_J), units::J_to_kJ(p.regen_J),
-                      units::J_to_kJ(p.net_J), p.lambda_J_per_s / 1000.0, p.converged ? 1 : 0,
-                      wobble.c_str());
-        out << buf;
-      }
+  data::write_atomically(path, [&](std::ostream& out) { write_frontiers_csv(out, frontiers); });
+}
+
+CurveStyle frontier_curve_style(std::size_t i) {
+  // Ten colours (matplotlib's tab10), then the same colours dashed, then dotted...: 13 sections
+  // of a line never share a style. Point types cycle with a period (6) prime to 10.
+  static const char* const colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                        "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  static const int points[] = {7, 5, 9, 11, 13, 15};
+  const std::size_t n = std::size(colours);
+  return {colours[i % n], static_cast<int>(1 + (i / n) % 6), points[i % std::size(points)]};
+}
+
+std::string frontiers_plot_script(const std::vector<LabelledFrontier>& frontiers,
+                                  const std::string& title, const std::string& objective,
+                                  PlotFormat format, const std::filesystem::path& output_file) {
+  std::ostringstream gp;
+  gp << gnuplot_terminal(format, 1000, 650) << "set output " << gnuplot_quote(output_file.string())
+     << "\nset title " << gnuplot_quote(title) << "\n"
+     << "set xlabel " << gnuplot_quote("running time (s)") << "\nset ylabel "
+     << gnuplot_quote((objective.empty() ? std::string("energy") : objective) + " (kJ)") << "\n"
+     << "set grid\nset key outside right top\nplot ";
+  for (std::size_t i = 0; i < frontiers.size(); ++i) {
+    const CurveStyle st = frontier_curve_style(i);
+    gp << (i ? ", " : "") << "'frontier.dat' index " << i
+       << " using 1:2 with linespoints lw 1.5 pt " << st.point_type << " ps 0.5 dt " << st.dash_type
+       << " lc rgb '" << st.colour << "' title "
+       << gnuplot_quote(frontiers[i].from + " - " + frontiers[i].to);
+  }
+  gp << "\n";
+  return gp.str();
+}
+
+void write_frontiers_plot_file(const std::filesystem::path& file,
+                               const std::vector<LabelledFrontier>& frontiers,
+                               const std::string& title, const std::string& objective,
+                               PlotFormat format) {
+  if (const std::string problem = gnuplot_problem(format); !problem.empty()) {
+    throw std::runtime_error(problem);
+  }
+  std::ostringstream data;
+  data.precision(10);
+  for (const auto& lf : frontiers) {
+    for (const auto& p : lf.frontier.points) {
+      data << p.running_time_s << ' ' << units::J_to_kJ(p.cost_J) << '\n';
     }
+    data << "\n\n";  // a gnuplot data block per section
+  }
+  run_gnuplot(
+      frontiers_plot_script(frontiers, title, objective, format, std::filesystem::absolute(file)),
+      {{"frontier.dat", data.str()}});
+  check_plot_complete(file, format);
+}
+
+void write_frontiers_plot(const std::filesystem::path& path,
+                          const std::vector<LabelledFrontier>& frontiers, const std::string& title,
+                          const std::string& objective) {
+  const auto format = plot_format_for(path);
+  if (!format) {
+    throw std::runtime_error("cannot write " + path.string() +
+                             ": a plot file name ends in .svg or .png");
+  }
+  data::produce_atomically(path, [&](const std::filesystem::path& tmp) {
+    write_frontiers_plot_file(tmp, frontiers, title, objective, *format);
   });
 }
 
 void write_frontiers_plot_svg(const std::filesystem::path& path,
                               const std::vector<LabelledFrontier>& frontiers,
                               const std::string& title) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    throw std::runtime_error("cannot write " + path.string() +
-                             ": gnuplot is not installed (apt-get install gnuplot-nox)");
-  }
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("ecorail-frontier-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  try {
-    const auto data_file = dir / "frontier.dat";
-    {
-      std::ofstream data(data_file);
-      for (const auto& lf : frontiers) {
-        for (const auto& p : lf.frontier.points) {
-          data << p.running_time_s << ' ' << units::J_to_kJ(p.cost_J) << '\n';
-        }
-        data << "\n\n";  // a gnuplot data block per section
-      }
-    }
-    data::produce_atomically(path, [&](const std::filesystem::path& tmp) {
-      const auto script = dir / "plot.gp";
-      std::ofstream gp(script);
-      gp << "set terminal svg size 900,600 dynamic font 'Helvetica,12' background rgb 'white'\n"
-         << "set output '" << tmp.string() << "'\nset title '" << title << "'\n"
-         << "set xlabel 'running time (s)'\nset ylabel 'energy (kJ)'\nset grid\n"
-         << "set key outside right\nplot ";
-      for (std::size_t i = 0; i < frontiers.size(); ++i) {
-        gp << (i ? ", " : "") << "'" << data_file.string() << "' index " << i
-           << " using 1:2 with linespoints pt 7 ps 0.4 title '" << frontiers[i].from << "-"
-           << frontiers[i].to << "'";
-      }
-      gp << "\n";
-      gp.close();
-      const std::string cmd =
-          "gnuplot " + script.string() + " > " + (dir / "log").string() + " 2>&1";
-      if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed");
-    });
-  } catch (...) {
-    std::filesystem::remove_all(dir);
-    throw;
-  }
-  std::filesystem::remove_all(dir);
+  write_frontiers_plot(path, frontiers, title);
 }
 
 }  // namespace ecorail::output

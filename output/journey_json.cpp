@@ -66,6 +66,7 @@ nlohmann::json journey_json(const dp::JourneySolution& sol, const JourneyLabels&
                       {"dwells", dwells},
                       {"regimes", all_regimes},
                       {"converged", sol.converged},
+                      {"termination", std::string(dp::termination_name(sol.summary.termination))},
                       {"warnings", sol.warnings},
                       {"grid", {{"ds_m", labels.ds_m}, {"dv_kmh", labels.dv_kmh}}},
                       {"search", {{"lambda_evaluations", sol.lambda_evaluations}}},

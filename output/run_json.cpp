@@ -47,8 +47,9 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   j["min_running_time_s"] = s.min_time_s;
   j["lambda"] = s.lambda_J_per_s / 1000.0;
   j["lambda_unit"] = "kJ/s";
-  j["objective"] = s.objective == dp::Objective::Net ? "net" : "traction";
+  j["objective"] = std::string(dp::objective_name(s.objective));
   j["converged"] = s.converged;
+  j["termination"] = std::string(dp::termination_name(s.termination));
   j["warnings"] = s.warnings;
   j["grid"] = {{"ds_m", s.grid.ds_m},
                {"dv_kmh", s.grid.dv_kmh},
@@ -63,8 +64,12 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   return j;
 }
 
+void write_json(std::ostream& out, const nlohmann::json& document) {
+  out << document.dump(2) << "\n";
+}
+
 void write_json(const std::filesystem::path& path, const nlohmann::json& document) {
-  data::write_atomically(path, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+  data::write_atomically(path, [&](std::ostream& out) { write_json(out, document); });
 }
 
 }  // namespace ecorail::output

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <vector>
 
 #include "dp/regimes.hpp"
@@ -22,5 +23,7 @@ nlohmann::json run_json(const physics::SimulationResult& sim,
 nlohmann::json section_solution_json(const dp::SectionSolution& solution);
 // Writes a JSON document (indented, newline-terminated) atomically.
 void write_json(const std::filesystem::path& path, const nlohmann::json& document);
+// The same text on a stream (for data::OutputBatch).
+void write_json(std::ostream& out, const nlohmann::json& document);
 
 }  // namespace ecorail::output

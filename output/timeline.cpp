@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace ecorail::output {
 
@@ -16,7 +17,7 @@ void append_section(Timeline& timeline, const physics::SimulationResult& sim,
     const physics::RouteSegment& seg = route.at(std::max(0.0, s - 1e-9));
     timeline.push_back({t0 + p.t_s, s0 + p.s_m, p.v_ms, p.accel_m_s2, p.force_N,
                         route.km_post_m(p.s_m), seg.gradient_permille, route.speed_limit_ms(s),
-                        p.regime, false, section});
+                        p.regime, false, section, seg.curve_radius_m});
   }
 }
 
@@ -30,6 +31,20 @@ void append_dwell(Timeline& timeline, double dwell_s) {
   p.regime = physics::Regime::Coast;
   p.dwelling = true;
   timeline.push_back(p);
+}
+
+Timeline journey_timeline(const dp::JourneySolution& solution,
+                          const std::vector<physics::Route>& routes) {
+  if (routes.size() != solution.sections.size()) {
+    throw std::invalid_argument("a journey timeline needs one route per section");
+  }
+  Timeline timeline;
+  for (std::size_t i = 0; i < solution.sections.size(); ++i) {
+    append_section(timeline, solution.sections[i].run.sim, routes[i], static_cast<int>(i));
+    if (i + 1 < solution.sections.size())
+      append_dwell(timeline, solution.sections[i].dwell_after_s);
+  }
+  return timeline;
 }
 
 Timeline per_second(const Timeline& timeline) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dp/journey.hpp"
 #include "physics/route.hpp"
 #include "physics/simulator.hpp"
 
@@ -24,6 +25,7 @@ struct TimelinePoint {
   physics::Regime regime = physics::Regime::Coast;
   bool dwelling = false;
   int section = 0;
+  double curve_radius_m = 0.0;  // 0 = straight track
 };
 
 using Timeline = std::vector<TimelinePoint>;
@@ -33,6 +35,10 @@ void append_section(Timeline& timeline, const physics::SimulationResult& sim,
                     const physics::Route& route, int section);
 // Appends a dwell at the last point of the timeline.
 void append_dwell(Timeline& timeline, double dwell_s);
+// A journey laid out for reporting: each section's re-simulated run, with its dwell after it
+// (routes: the journey's, one per section).
+Timeline journey_timeline(const dp::JourneySolution& solution,
+                          const std::vector<physics::Route>& routes);
 // Samples at t = 1, 2, ... s and at the final instant, interpolating linearly in time.
 Timeline per_second(const Timeline& timeline);
 

@@ -32,4 +32,19 @@ std::string_view regime_name(Regime r) {
   return "?";
 }
 
+std::optional<Control> control_from_name(std::string_view name) {
+  for (int c = 0; c < kControlCount; ++c) {
+    if (control_name(static_cast<Control>(c)) == name) return static_cast<Control>(c);
+  }
+  return std::nullopt;
+}
+
+std::optional<Regime> regime_from_name(std::string_view name) {
+  for (auto r : {Regime::FullTraction, Regime::PartialTraction, Regime::Coast,
+                 Regime::PartialBrake, Regime::FullBrake}) {
+    if (regime_name(r) == name) return r;
+  }
+  return std::nullopt;
+}
+
 }  // namespace ecorail::physics

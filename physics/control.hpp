@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace ecorail::physics {
@@ -21,7 +22,10 @@ enum class Regime : std::uint8_t {
   FullBrake,
 };
 
+// Names to and from text, in one place each (reports, JSON, CSV, command-line flags).
 std::string_view control_name(Control c);
 std::string_view regime_name(Regime r);
+std::optional<Control> control_from_name(std::string_view name);
+std::optional<Regime> regime_from_name(std::string_view name);
 
 }  // namespace ecorail::physics

@@ -2,8 +2,9 @@
 # End-to-end: `ecorail calibrate` on the two published per-second tables writes a train file and
 # a JSON with davis_A/B/C, rotating_mass_factor, gradient_scale (each with a _se twin) and
 # discounted_rows; the gradient scale comes out near zero (the tables do not feel their printed
-# gradient). Bad logs (missing column, time going back, too few rows) exit with code 2 and say
-# what is wrong, writing nothing.
+# gradient). Bad logs (missing column, time going back, too few rows, physically impossible
+# rows) exit with code 2 and say what is wrong, writing nothing; a fit that does not converge
+# exits with code 1 and writes nothing.
 # Usage: bash fitting_calibrate.sh <path-to-ecorail> <source-dir>
 set -euo pipefail
 ecorail="$1"
@@ -61,4 +62,37 @@ printf 'time_s,speed_kmh,traction_force_kN,braking_force_kN\n0,30,0,0\n1,29.6,0,
 expect_error "not identifiable" --log "$tmp/short.csv"
 expect_error "davis_A" --log "$tmp/short.csv"
 expect_error "--fix" --log "$data/seed_profile_A6_A7_110s.csv" --fix no_such_parameter
+
+# Physically impossible rows are refused before any fit, naming file, row and field: a tenfold
+# speed typo (615 km/h for an 80 km/h train) and a speed drop no brake can produce.
+awk -F, 'BEGIN { OFS = "," } NR == 40 { $2 = "17083.3"; $3 = "615.0" } { print }' \
+  "$data/seed_profile_A6_A7_110s.csv" > "$tmp/typo.csv"
+expect_error "typo.csv: row 40, field 'speed_cm_s'" --log "$tmp/typo.csv"
+expect_error "maximum speed 80 km/h" --log "$data/seed_profile_A6_A8_220s.csv" --log "$tmp/typo.csv"
+awk -F, 'BEGIN { OFS = "," } NR == 40 { $2 = "159.2"; $3 = "5.7" } { print }' \
+  "$data/seed_profile_A6_A7_110s.csv" > "$tmp/drop.csv"
+expect_error "row 40, field 'speed_cm_s': expected a speed the train can reach from row 39" \
+  --log "$tmp/drop.csv"
+# A speed of 1e308 m/s (issue 15: a segmentation fault inside the fit) is refused as well.
+printf 'time_s,speed_ms,traction_force_kN\n0,10,100\n1,1e308,100\n2,10,100\n' >"$tmp/huge.csv"
+expect_error "huge.csv: row 3, field 'speed_ms'" --log "$tmp/huge.csv"
+# Outputs are checked before the fit.
+set +e
+"$ecorail" calibrate --log "$data/seed_profile_A6_A8_220s.csv" --out "$tmp/no/c.toml" \
+  --json "$tmp/nc.json" >/dev/null 2>"$tmp/err"
+rc=$?
+set -e
+[ "$rc" -eq 2 ] && grep -q -- "--out" "$tmp/err" && [ ! -e "$tmp/nc.json" ] ||
+  fail "missing --out directory: exit $rc, $(cat "$tmp/err")"
+
+# A fit that ends without convergence is an error and nothing is written.
+set +e
+"$ecorail" calibrate --log "$data/seed_profile_A6_A8_220s.csv" --max-iterations 1 \
+  --out "$tmp/nc.toml" --json "$tmp/nc.json" >"$tmp/out" 2>"$tmp/err"
+rc=$?
+set -e
+[ "$rc" -eq 1 ] || fail "non-converged fit: exit $rc, want 1"
+grep -q "NO_CONVERGENCE" "$tmp/err" || fail "message lacks NO_CONVERGENCE: $(cat "$tmp/err")"
+[ "$(grep -c . "$tmp/err")" -eq 1 ] || fail "more than one line of error: $(cat "$tmp/err")"
+[ ! -e "$tmp/nc.toml" ] && [ ! -e "$tmp/nc.json" ] || fail "non-converged fit was written"
 echo "fitting_calibrate: ok"

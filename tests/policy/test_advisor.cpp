@@ -12,9 +12,9 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "dp/advisor.hpp"
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
+#include "policy/advisor.hpp"
 
 namespace ecorail {
 namespace {
@@ -22,15 +22,16 @@ namespace {
 struct Fixture {
   data::Line line = data::default_line();
   physics::Train train = data::default_train();
-  dp::PolicyTable table;
+  policy::PolicyTable table;
 
   Fixture() {
     const physics::Route route = data::build_route(line, "A6", "A7", train);
     const dp::SectionEngine engine(train, route, {});
-    table = dp::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
+    table =
+        policy::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
     for (double offset : {-5.0, 0.0, 5.0}) {
       const dp::TimeSearchResult found = dp::solve_for_time(engine, 110.0 + offset, {});
-      dp::PolicyLayer layer = dp::build_policy_layer(engine, found.run.lambda);
+      policy::PolicyLayer layer = policy::build_policy_layer(engine, found.run.lambda);
       layer.time_offset_s = offset;
       layer.target_time_s = 110.0 + offset;
       table.layers.push_back(std::move(layer));
@@ -43,11 +44,11 @@ const Fixture& fixture() {
   return f;
 }
 
-std::string mismatch_of(const dp::PolicyTable& table, const data::Line& line,
+std::string mismatch_of(const policy::PolicyTable& table, const data::Line& line,
                         const physics::Train& train) {
   try {
-    dp::Advisor advisor(table, line, train);
-  } catch (const dp::PolicyMismatchError& e) {
+    policy::Advisor advisor(table, line, train);
+  } catch (const policy::PolicyMismatchError& e) {
     return e.what();
   }
   return "";
@@ -81,27 +82,27 @@ TEST(Advisor, LoadChecksTheFileAndTheTrain) {
   const auto dir = std::filesystem::temp_directory_path() / "ecorail_advisor_test";
   std::filesystem::create_directories(dir);
   const auto path = dir / "a6a7.bin";
-  dp::save_policy(f.table, path);
-  const dp::Advisor advisor = dp::Advisor::load(path, f.line, f.train);
+  policy::save_policy(f.table, path);
+  const policy::Advisor advisor = policy::Advisor::load(path, f.line, f.train);
   EXPECT_EQ(advisor.table().layers.size(), 3u);
   EXPECT_EQ(advisor.layer(), 1);  // the nominal layer (offset 0)
   physics::Train other = f.train;
   other.davis.A += 0.01;
-  EXPECT_THROW(dp::Advisor::load(path, f.line, other), dp::PolicyMismatchError);
+  EXPECT_THROW(policy::Advisor::load(path, f.line, other), policy::PolicyMismatchError);
   std::filesystem::resize_file(path, std::filesystem::file_size(path) - 100);
-  EXPECT_THROW(dp::Advisor::load(path, f.line, f.train), dp::PolicyFormatError);
+  EXPECT_THROW(policy::Advisor::load(path, f.line, f.train), policy::PolicyFormatError);
   std::filesystem::remove_all(dir);
 }
 
 TEST(Advisor, ReproducesTheTableAtGridNodes) {
   const Fixture& f = fixture();
-  const dp::Advisor advisor(f.table, f.line, f.train);
-  const dp::PolicyLayer& L = f.table.layers[1];
+  const policy::Advisor advisor(f.table, f.line, f.train);
+  const policy::PolicyLayer& L = f.table.layers[1];
   int nodes = 0, same_control = 0;
   double worst = 0.0;
   for (int i = 0; i + 1 < f.table.stage_count(); i += 3) {
     for (std::uint32_t n = f.table.stage_offset[i]; n < f.table.stage_offset[i + 1]; ++n) {
-      const dp::Advice a = advisor.advise(f.table.position_m[i], f.table.speed_ms[n]);
+      const policy::Advice a = advisor.advise(f.table.position_m[i], f.table.speed_ms[n]);
       ASSERT_TRUE(a.feasible);
       const double rel = std::abs(a.cost_to_go_J - L.cost_to_go_J[n]) / L.cost_to_go_J[n];
       worst = std::max(worst, rel);
@@ -119,7 +120,7 @@ TEST(Advisor, ReproducesTheTableAtGridNodes) {
 
 TEST(Advisor, BetweenNodesStaysCloseToTheTableInterpolation) {
   const Fixture& f = fixture();
-  const dp::Advisor advisor(f.table, f.line, f.train);
+  const policy::Advisor advisor(f.table, f.line, f.train);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> pos(0.0, f.table.route_length_m - 1.0);
   const double final_approach_m = f.table.route_length_m - 100.0;
@@ -135,7 +136,7 @@ TEST(Advisor, BetweenNodesStaysCloseToTheTableInterpolation) {
                                 f.table.speed_ms[f.table.stage_offset[next + 1] - 1]);
     if (top < 1.0) continue;
     const double v = std::uniform_real_distribution<double>(0.5, top)(rng);
-    const dp::Advice a = advisor.advise(s, v);
+    const policy::Advice a = advisor.advise(s, v);
     ASSERT_TRUE(a.feasible);
     const double table_J = f.table.cost_to_go_J(1, s, v);
     const double rel = std::abs(a.cost_to_go_J - table_J) / table_J;
@@ -154,25 +155,25 @@ TEST(Advisor, BetweenNodesStaysCloseToTheTableInterpolation) {
 
 TEST(Advisor, AdviceAtTheStartOnTheBrakingCurveAndAtTheStop) {
   const Fixture& f = fixture();
-  const dp::Advisor advisor(f.table, f.line, f.train);
-  const dp::Advice start = advisor.advise(0.0, 0.0);
+  const policy::Advisor advisor(f.table, f.line, f.train);
+  const policy::Advice start = advisor.advise(0.0, 0.0);
   EXPECT_EQ(start.control, physics::Control::MaxTraction);
   EXPECT_EQ(start.regime, physics::Regime::FullTraction);
   EXPECT_GT(start.force_N, 190e3);
   EXPECT_NEAR(start.time_to_go_s, 110.0, 1.0);
   // Above the braking curve for the stop every control is clamped: the advice says brake.
-  const dp::Advice late = advisor.advise(1300.0, units::kmh_to_ms(40.0));
+  const policy::Advice late = advisor.advise(1300.0, units::kmh_to_ms(40.0));
   EXPECT_EQ(late.control, physics::Control::MaxBrake);
   EXPECT_EQ(late.regime, physics::Regime::FullBrake);
   EXPECT_NEAR(late.force_N, -166e3, 1.0);
   EXPECT_DOUBLE_EQ(late.energy_to_go_J, 0.0);
-  const dp::Advice stop = advisor.advise(f.table.route_length_m, 0.0);
+  const policy::Advice stop = advisor.advise(f.table.route_length_m, 0.0);
   EXPECT_EQ(stop.cost_to_go_J, 0.0);
 }
 
 TEST(Advisor, LadderLayersAreOrderedAndSelectedByTimeLeft) {
   const Fixture& f = fixture();
-  dp::Advisor advisor(f.table, f.line, f.train);
+  policy::Advisor advisor(f.table, f.line, f.train);
   const auto& layers = f.table.layers;
   EXPECT_GT(layers[0].lambda_J_per_s, layers[1].lambda_J_per_s);  // running early costs more
   EXPECT_GT(layers[1].lambda_J_per_s, layers[2].lambda_J_per_s);

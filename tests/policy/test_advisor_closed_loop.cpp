@@ -17,9 +17,9 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "dp/advisor.hpp"
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
+#include "policy/advisor.hpp"
 
 namespace ecorail {
 namespace {
@@ -60,7 +60,7 @@ struct SpeedSensor {
 // passes) gives the time left to the timetable; every 10 m the layer whose expected time-to-go is
 // closest to it is chosen.
 struct TimeKeeper {
-  const dp::Advisor* advisor;
+  const policy::Advisor* advisor;
   double clock_s = 0.0;
   double s_prev = 0.0, v_prev = 0.0, chosen_at = -1e9;
   int layer = 0;
@@ -84,18 +84,18 @@ class AdvisorClosedLoop : public ::testing::Test {
     const physics::Route route = data::build_route(*line_, "A6", "A7", *train_);
     const dp::SectionEngine engine(*train_, route, {});
     optimum_ = new dp::TimeSearchResult(dp::solve_for_time(engine, kTimetable_s, {}));
-    dp::PolicyTable table = dp::make_policy_table(engine, line_->name, line_->checksum(),
-                                                  data::train_checksum(*train_));
+    policy::PolicyTable table = policy::make_policy_table(engine, line_->name, line_->checksum(),
+                                                          data::train_checksum(*train_));
     for (double offset : {-4.0, -2.0, 0.0, 2.0, 4.0}) {
       const double lambda = offset == 0.0
                                 ? optimum_->run.lambda
                                 : dp::solve_for_time(engine, kTimetable_s + offset, {}).run.lambda;
-      dp::PolicyLayer layer = dp::build_policy_layer(engine, lambda);
+      policy::PolicyLayer layer = policy::build_policy_layer(engine, lambda);
       layer.time_offset_s = offset;
       layer.target_time_s = kTimetable_s + offset;
       table.layers.push_back(std::move(layer));
     }
-    advisor_ = new dp::Advisor(std::move(table), *line_, *train_);
+    advisor_ = new policy::Advisor(std::move(table), *line_, *train_);
   }
   static void TearDownTestSuite() {
     delete advisor_;
@@ -161,7 +161,7 @@ class AdvisorClosedLoop : public ::testing::Test {
   static inline data::Line* line_ = nullptr;
   static inline physics::Train* train_ = nullptr;
   static inline dp::TimeSearchResult* optimum_ = nullptr;
-  static inline dp::Advisor* advisor_ = nullptr;
+  static inline policy::Advisor* advisor_ = nullptr;
 };
 
 TEST_F(AdvisorClosedLoop, OnTimeReproducesTheOptimalEnergy) {

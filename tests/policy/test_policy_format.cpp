@@ -14,32 +14,33 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "dp/policy_table.hpp"
+#include "policy/policy_table.hpp"
 
 namespace ecorail {
 namespace {
 
-dp::PolicyTable small_table() {
+policy::PolicyTable small_table() {
   const data::Line line = data::default_line();
   const physics::Train train = data::default_train();
   const physics::Route route = data::build_route(line, "A6", "A7", train);
   dp::EngineOptions options;
   options.grid = {50.0, 4.0, 25.0};
   const dp::SectionEngine engine(train, route, options);
-  dp::PolicyTable table =
-      dp::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
-  for (double lambda : {6e5, 9e5}) table.layers.push_back(dp::build_policy_layer(engine, lambda));
+  policy::PolicyTable table =
+      policy::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
+  for (double lambda : {6e5, 9e5})
+    table.layers.push_back(policy::build_policy_layer(engine, lambda));
   table.layers[1].time_offset_s = -5.0;
   return table;
 }
 
-const dp::PolicyTable& table() {
-  static const dp::PolicyTable t = small_table();
+const policy::PolicyTable& table() {
+  static const policy::PolicyTable t = small_table();
   return t;
 }
 
 const std::string& bytes() {
-  static const std::string b = dp::encode_policy(table());
+  static const std::string b = policy::encode_policy(table());
   return b;
 }
 
@@ -54,16 +55,16 @@ std::string reseal(std::string b) {
 
 std::string error_of(const std::string& b) {
   try {
-    dp::decode_policy(b, "t.bin");
-  } catch (const dp::PolicyFormatError& e) {
+    policy::decode_policy(b, "t.bin");
+  } catch (const policy::PolicyFormatError& e) {
     return e.what();
   }
   return "";
 }
 
 TEST(PolicyFormat, RoundTripIsExact) {
-  const dp::PolicyTable& a = table();
-  const dp::PolicyTable b = dp::decode_policy(bytes());
+  const policy::PolicyTable& a = table();
+  const policy::PolicyTable b = policy::decode_policy(bytes());
   EXPECT_EQ(b.line_name, a.line_name);
   EXPECT_EQ(b.line_checksum, a.line_checksum);
   EXPECT_EQ(b.train_name, a.train_name);
@@ -88,7 +89,7 @@ TEST(PolicyFormat, RoundTripIsExact) {
     EXPECT_EQ(b.layers[k].cost_to_go_J, a.layers[k].cost_to_go_J);
     EXPECT_EQ(b.layers[k].time_to_go_s, a.layers[k].time_to_go_s);
   }
-  EXPECT_EQ(dp::encode_policy(b), bytes());
+  EXPECT_EQ(policy::encode_policy(b), bytes());
   EXPECT_EQ(b.nominal_layer(), 0);
   // The header starts with the magic and the version, little-endian.
   EXPECT_EQ(std::memcmp(bytes().data(), "ECRLPOL\n", 8), 0);
@@ -100,16 +101,16 @@ TEST(PolicyFormat, FileRoundTripAndMissingFile) {
   const auto dir = std::filesystem::temp_directory_path() / "ecorail_policy_format_test";
   std::filesystem::create_directories(dir);
   const auto path = dir / "t.bin";
-  dp::save_policy(table(), path);
+  policy::save_policy(table(), path);
   EXPECT_EQ(std::filesystem::file_size(path), bytes().size());
-  EXPECT_EQ(dp::encode_policy(dp::load_policy(path)), bytes());
-  EXPECT_THROW(dp::load_policy(dir / "missing.bin"), dp::PolicyFormatError);
+  EXPECT_EQ(policy::encode_policy(policy::load_policy(path)), bytes());
+  EXPECT_THROW(policy::load_policy(dir / "missing.bin"), policy::PolicyFormatError);
   std::filesystem::remove_all(dir);
 }
 
 TEST(PolicyFormat, CsvHasOneRowPerLayerAndNode) {
   std::ostringstream out;
-  dp::write_policy_csv(out, table());
+  policy::write_policy_csv(out, table());
   std::istringstream in(out.str());
   std::string header, row;
   std::getline(in, header);
@@ -175,18 +176,18 @@ TEST(PolicyFormat, WellFramedNonsenseIsRejectedNotTrusted) {
       c[pos] = static_cast<char>(rng());
     }
     try {
-      const dp::PolicyTable t = dp::decode_policy(reseal(c));
+      const policy::PolicyTable t = policy::decode_policy(reseal(c));
       // Accepted: then it is internally consistent, so lookups stay in bounds.
       for (int i = 0; i < t.stage_count(); ++i) (void)t.cost_to_go_J(0, t.position_m[i], 10.0);
-    } catch (const dp::PolicyFormatError&) {
+    } catch (const policy::PolicyFormatError&) {
       ++rejected;
     }
   }
   EXPECT_GT(rejected, 0);
   // A node count that does not fit, and an unknown control code, named as such.
   std::string c = bytes();
-  const dp::PolicyTable& t = table();
-  const std::size_t counts = 20 + 4 + dp::kPolicyUnits.size() + 4 + t.line_name.size() + 8 + 4 +
+  const policy::PolicyTable& t = table();
+  const std::size_t counts = 20 + 4 + policy::kPolicyUnits.size() + 4 + t.line_name.size() + 8 + 4 +
                              t.train_name.size() + 8 + 4 + t.from.size() + 4 + t.to.size() + 8 + 1 +
                              4 * 8;
   c[counts + 4 + 3] = 0x7f;

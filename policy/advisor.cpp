@@ -1,4 +1,4 @@
-#include "dp/advisor.hpp"
+#include "policy/advisor.hpp"
 
 #include <array>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "dp/backward_sweep.hpp"
 #include "physics/speed_envelope.hpp"
 
-namespace ecorail::dp {
+namespace ecorail::policy {
 
 namespace {
 
@@ -118,11 +118,11 @@ Advice Advisor::advise(int layer, double s_m, double v_ms) const {
   const int next = table_.next_stage_after(s);
   const double target = table_.position_m[next];
   const double e = 0.5 * v * v;
-  const Objective objective = table_.objective;
+  const dp::Objective objective = table_.objective;
   const physics::Train& train = model_->train;
 
-  double best_q = kInfeasible;
-  double best_t = kInfeasible;
+  double best_q = dp::kInfeasible;
+  double best_t = dp::kInfeasible;
   physics::Control best_c = physics::Control::MaxTraction;
   bool found = false;
   for (physics::Control c : kPreference) {
@@ -130,8 +130,8 @@ Advice Advisor::advise(int layer, double s_m, double v_ms) const {
     if (adv.stalled) continue;
     const double v_end = physics::speed_from_e(adv.e_end);
     const double rest = table_.interpolate(L.cost_to_go_J, next, v_end);
-    if (!is_feasible(rest)) continue;
-    const double q = energy_cost_J(objective, train, adv.traction_work_J, adv.brake_work_J) +
+    if (!dp::is_feasible(rest)) continue;
+    const double q = dp::energy_cost_J(objective, train, adv.traction_work_J, adv.brake_work_J) +
                      L.lambda_J_per_s * adv.time_s + rest;
     // Strictly better beyond the tie tolerance: earlier (preferred) controls win ties.
     if (!found || q < best_q - (kTieRelative * std::abs(best_q) + kTieAbsolute_J)) {
@@ -148,7 +148,7 @@ Advice Advisor::advise(int layer, double s_m, double v_ms) const {
   best.force_N = probe.mean_force_N;
   best.cost_to_go_J = best_q;
   best.time_to_go_s = best_t;
-  best.energy_to_go_J = found ? best_q - L.lambda_J_per_s * best_t : kInfeasible;
+  best.energy_to_go_J = found ? best_q - L.lambda_J_per_s * best_t : dp::kInfeasible;
   return best;
 }
 
@@ -171,4 +171,4 @@ physics::ControlLaw Advisor::law() const {
   return [this](double s_m, double v_ms) { return advise(s_m, v_ms).control; };
 }
 
-}  // namespace ecorail::dp
+}  // namespace ecorail::policy

@@ -23,7 +23,7 @@
 #include "physics/control.hpp"
 #include "physics/motion.hpp"
 
-namespace ecorail::dp {
+namespace ecorail::policy {
 
 // A policy file that cannot be read: wrong magic or version, truncated, corrupted, inconsistent.
 class PolicyFormatError : public std::runtime_error {
@@ -58,8 +58,8 @@ struct PolicyTable {
   std::uint64_t train_checksum = 0;
   std::string from, to;
   double route_length_m = 0.0;
-  Objective objective = Objective::Traction;
-  GridSpec grid_spec;
+  dp::Objective objective = dp::Objective::Traction;
+  dp::GridSpec grid_spec;
   double envelope_resolution_m = 0.1;
   std::vector<double> position_m;           // stage positions s_i, increasing, last = length
   std::vector<std::uint32_t> stage_offset;  // first node of each stage; size stages + 1
@@ -93,12 +93,12 @@ physics::Substep control_probe(const physics::Motion& motion, double s_m, double
 
 // Identity of the table (everything but the layers) from an engine and the line's and train's
 // checksums and names.
-PolicyTable make_policy_table(const SectionEngine& engine, const std::string& line_name,
+PolicyTable make_policy_table(const dp::SectionEngine& engine, const std::string& line_name,
                               std::uint64_t line_checksum, std::uint64_t train_checksum);
 
 // One layer for a time price lambda: a backward sweep, the time-to-go along the optimal policy,
 // the force and regime of each node's control, and the planned (re-simulated) run.
-PolicyLayer build_policy_layer(const SectionEngine& engine, double lambda_J_per_s);
+PolicyLayer build_policy_layer(const dp::SectionEngine& engine, double lambda_J_per_s);
 
 // The binary format (docs/policy_format.md). Writing throws std::runtime_error on I/O failure.
 std::string encode_policy(const PolicyTable& table);
@@ -111,4 +111,4 @@ PolicyTable load_policy(const std::filesystem::path& path);
 // CSV export, one row per (layer, node); columns in docs/policy_format.md.
 void write_policy_csv(std::ostream& out, const PolicyTable& table);
 
-}  // namespace ecorail::dp
+}  // namespace ecorail::policy

@@ -17,11 +17,11 @@
 #include <stdexcept>
 
 #include "data/line.hpp"
-#include "dp/policy_table.hpp"
 #include "physics/simulator.hpp"
 #include "physics/train.hpp"
+#include "policy/policy_table.hpp"
 
-namespace ecorail::dp {
+namespace ecorail::policy {
 
 // The table was made for another line or train (or by an incompatible engine).
 class PolicyMismatchError : public std::runtime_error {
@@ -71,4 +71,4 @@ class Advisor {
   int layer_ = 0;
 };
 
-}  // namespace ecorail::dp
+}  // namespace ecorail::policy

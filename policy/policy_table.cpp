@@ -1,4 +1,4 @@
-#include "dp/policy_table.hpp"
+#include "policy/policy_table.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -15,7 +15,7 @@
 #include "dp/text_format.hpp"
 #include "physics/units.hpp"
 
-namespace ecorail::dp {
+namespace ecorail::policy {
 
 namespace {
 
@@ -118,20 +118,20 @@ std::uint64_t payload_checksum(std::string_view bytes_before_trailer) {
 }
 
 std::string hex64(std::uint64_t x) {
-  return format_text("0x%016llx", static_cast<unsigned long long>(x));
+  return dp::format_text("0x%016llx", static_cast<unsigned long long>(x));
 }
 
 // Time to go along the optimal policy: the same backward recursion as the cost-to-go, over the
 // time of each node's optimal transition.
-std::vector<double> time_to_go(const SectionEngine& engine, const ValueFunction& value) {
-  const StageGrid& grid = engine.grid();
+std::vector<double> time_to_go(const dp::SectionEngine& engine, const dp::ValueFunction& value) {
+  const dp::StageGrid& grid = engine.grid();
   const int last = grid.stage_count() - 1;
-  std::vector<double> T(grid.total_nodes(), kInfeasible);
+  std::vector<double> T(grid.total_nodes(), dp::kInfeasible);
   T[grid.offset(last)] = 0.0;
   for (int i = last - 1; i >= 0; --i) {
     for (int node = grid.offset(i); node < grid.offset(i) + grid.node_count(i); ++node) {
-      if (!is_feasible(value.cost_to_go[node])) continue;
-      const Transition& t =
+      if (!dp::is_feasible(value.cost_to_go[node])) continue;
+      const dp::Transition& t =
           engine.transitions().at(node, static_cast<physics::Control>(value.best[node]));
       if (t.lower < 0) continue;
       double next = T[t.lower];
@@ -194,7 +194,7 @@ double PolicyTable::cost_to_go_J(int layer, double s_m, double v_ms) const {
   const int prev = next - 1;
   const double a = interpolate(J, prev, v_ms);
   const double b = interpolate(J, next, v_ms);
-  if (!is_feasible(a) || !is_feasible(b)) return kInfeasible;
+  if (!dp::is_feasible(a) || !dp::is_feasible(b)) return dp::kInfeasible;
   const double x = (s - position_m[prev]) / (position_m[next] - position_m[prev]);
   return a + std::clamp(x, 0.0, 1.0) * (b - a);
 }
@@ -212,11 +212,12 @@ void PolicyTable::validate() const {
         std::isfinite(envelope_resolution_m))) {
     fail("grid settings must be positive and finite");
   }
-  if (objective != Objective::Traction && objective != Objective::Net) fail("objective code");
+  if (objective != dp::Objective::Traction && objective != dp::Objective::Net)
+    fail("objective code");
   if (position_m.front() != 0.0) fail("first stage is not at 0 m");
   for (int i = 1; i < N; ++i) {
     if (!(position_m[i] > position_m[i - 1]) || !std::isfinite(position_m[i])) {
-      fail(format_text("stage positions not increasing at stage %d", i));
+      fail(dp::format_text("stage positions not increasing at stage %d", i));
     }
   }
   if (std::abs(position_m.back() - route_length_m) > 1e-6) fail("last stage is not the stop");
@@ -225,12 +226,12 @@ void PolicyTable::validate() const {
     fail("stage offsets do not cover the nodes");
   }
   for (int i = 0; i < N; ++i) {
-    if (!(stage_offset[i + 1] > stage_offset[i])) fail(format_text("stage %d has no node", i));
+    if (!(stage_offset[i + 1] > stage_offset[i])) fail(dp::format_text("stage %d has no node", i));
     for (std::uint32_t n = stage_offset[i]; n < stage_offset[i + 1]; ++n) {
       if (!(std::isfinite(speed_ms[n]) && speed_ms[n] >= 0.0))
-        fail(format_text("speed of node %u", n));
+        fail(dp::format_text("speed of node %u", n));
       if (n > stage_offset[i] && !(speed_ms[n] > speed_ms[n - 1])) {
-        fail(format_text("node speeds not increasing at stage %d", i));
+        fail(dp::format_text("node speeds not increasing at stage %d", i));
       }
     }
   }
@@ -239,7 +240,7 @@ void PolicyTable::validate() const {
   }
   for (std::size_t k = 0; k < layers.size(); ++k) {
     const PolicyLayer& L = layers[k];
-    const std::string which = format_text("layer %zu: ", k);
+    const std::string which = dp::format_text("layer %zu: ", k);
     if (!(std::isfinite(L.lambda_J_per_s) && L.lambda_J_per_s >= 0.0)) fail(which + "lambda");
     if (L.control.size() != speed_ms.size() || L.regime.size() != speed_ms.size() ||
         L.force_N.size() != speed_ms.size() || L.cost_to_go_J.size() != speed_ms.size() ||
@@ -248,13 +249,13 @@ void PolicyTable::validate() const {
     }
     for (int n = 0; n < M; ++n) {
       if (L.control[n] >= physics::kControlCount)
-        fail(which + format_text("control code at node %d", n));
+        fail(which + dp::format_text("control code at node %d", n));
       if (L.regime[n] > static_cast<std::uint8_t>(physics::Regime::FullBrake)) {
-        fail(which + format_text("regime code at node %d", n));
+        fail(which + dp::format_text("regime code at node %d", n));
       }
       if (!std::isfinite(L.force_N[n]) || !std::isfinite(L.cost_to_go_J[n]) ||
           !std::isfinite(L.time_to_go_s[n]) || L.time_to_go_s[n] < 0.0) {
-        fail(which + format_text("non-finite or negative value at node %d", n));
+        fail(which + dp::format_text("non-finite or negative value at node %d", n));
       }
     }
     if (L.cost_to_go_J[M - 1] != 0.0 || L.time_to_go_s[M - 1] != 0.0) {
@@ -278,7 +279,7 @@ physics::Substep control_probe(const physics::Motion& motion, double s_m, double
   return motion.substep(s_m, 0.5 * v_ms * v_ms, h, c, 4);
 }
 
-PolicyTable make_policy_table(const SectionEngine& engine, const std::string& line_name,
+PolicyTable make_policy_table(const dp::SectionEngine& engine, const std::string& line_name,
                               std::uint64_t line_checksum, std::uint64_t train_checksum) {
   PolicyTable t;
   t.line_name = line_name;
@@ -291,7 +292,7 @@ PolicyTable make_policy_table(const SectionEngine& engine, const std::string& li
   t.objective = engine.options().objective;
   t.grid_spec = engine.options().grid;
   t.envelope_resolution_m = engine.options().envelope_resolution_m;
-  const StageGrid& grid = engine.grid();
+  const dp::StageGrid& grid = engine.grid();
   t.position_m = grid.positions();
   for (int i = 0; i <= grid.stage_count(); ++i) {
     t.stage_offset.push_back(
@@ -304,9 +305,9 @@ PolicyTable make_policy_table(const SectionEngine& engine, const std::string& li
   return t;
 }
 
-PolicyLayer build_policy_layer(const SectionEngine& engine, double lambda) {
-  const ValueFunction value = engine.sweep(lambda);
-  const StageGrid& grid = engine.grid();
+PolicyLayer build_policy_layer(const dp::SectionEngine& engine, double lambda) {
+  const dp::ValueFunction value = engine.sweep(lambda);
+  const dp::StageGrid& grid = engine.grid();
   PolicyLayer L;
   L.lambda_J_per_s = lambda;
   L.control = value.best;
@@ -320,7 +321,7 @@ PolicyLayer build_policy_layer(const SectionEngine& engine, double lambda) {
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < grid.node_count(i); ++j) {
       const int node = grid.offset(i) + j;
-      if (!is_feasible(value.cost_to_go[node])) continue;
+      if (!dp::is_feasible(value.cost_to_go[node])) continue;
       const physics::Substep probe =
           control_probe(engine.motion(), grid.position(i), grid.speed(i, j),
                         static_cast<physics::Control>(value.best[node]), grid.position(i + 1));
@@ -328,7 +329,7 @@ PolicyLayer build_policy_layer(const SectionEngine& engine, double lambda) {
       L.force_N[node] = probe.mean_force_N;
     }
   }
-  const LambdaRun run = engine.run(lambda);
+  const dp::LambdaRun run = engine.run(lambda);
   L.planned_time_s = run.sim.running_time_s;
   L.planned_energy_J = run.cost_J;
   L.target_time_s = run.sim.running_time_s;
@@ -351,7 +352,7 @@ std::string encode_policy(const PolicyTable& t) {
   w.str(t.from);
   w.str(t.to);
   w.f64(t.route_length_m);
-  w.u8(t.objective == Objective::Net ? 1 : 0);
+  w.u8(t.objective == dp::Objective::Net ? 1 : 0);
   w.f64(t.grid_spec.ds_m);
   w.f64(t.grid_spec.dv_kmh);
   w.f64(t.grid_spec.substep_m);
@@ -455,7 +456,7 @@ PolicyTable decode_policy(std::string_view b, const std::string& label) {
   const std::uint8_t objective = p.u8("objective");
   if (objective > 1)
     throw PolicyFormatError(label + ": unknown objective code " + std::to_string(objective));
-  t.objective = objective == 1 ? Objective::Net : Objective::Traction;
+  t.objective = objective == 1 ? dp::Objective::Net : dp::Objective::Traction;
   t.grid_spec.ds_m = p.f64("ds_m");
   t.grid_spec.dv_kmh = p.f64("dv_kmh");
   t.grid_spec.substep_m = p.f64("substep_m");
@@ -520,7 +521,7 @@ void write_policy_csv(std::ostream& out, const PolicyTable& t) {
     const PolicyLayer& L = t.layers[k];
     for (int i = 0; i < t.stage_count(); ++i) {
       for (std::uint32_t n = t.stage_offset[i]; n < t.stage_offset[i + 1]; ++n) {
-        const bool feasible = is_feasible(L.cost_to_go_J[n]);
+        const bool feasible = dp::is_feasible(L.cost_to_go_J[n]);
         const std::string control(
             physics::control_name(static_cast<physics::Control>(L.control[n])));
         const std::string regime(physics::regime_name(static_cast<physics::Regime>(L.regime[n])));
@@ -542,4 +543,4 @@ void write_policy_csv(std::ostream& out, const PolicyTable& t) {
   }
 }
 
-}  // namespace ecorail::dp
+}  // namespace ecorail::policy

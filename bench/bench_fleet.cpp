@@ -1,0 +1,108 @@
+// Speed of the fleet timetable work on question 2.1's reference case (100 trains, span 63900 s,
+// headways 120-660 s, the reference pattern: 30 s dwells, optimal split of 1726 s running):
+// one full power-flow evaluation at the default 0.01 s step (laying 100 trains into an empty
+// balance), one incremental move of one train (and back), the exact overlap DPs (train ahead;
+// either neighbour), the pair bound, and the whole power-flow headway optimisation with its
+// defaults. The pattern is built once, outside the timings.
+// Run: build/bench/bench_fleet --benchmark_min_time=1
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+
+#include "data/line_loader.hpp"
+#include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "timetable/fleet_models.hpp"
+#include "timetable/fleet_pattern.hpp"
+#include "timetable/headway_optimiser.hpp"
+#include "timetable/pair_bound.hpp"
+
+namespace {
+
+using namespace ecorail;
+
+const timetable::PatternTrip& pattern() {
+  static const timetable::PatternTrip p = [] {
+    const auto line = data::default_line();
+    const auto train = data::default_train();
+    const auto stops = data::stops_between(line, "A1", "A14");
+    const dp::SectionLibrary lib(train, data::build_routes(line, stops, train), {});
+    dp::JourneyOptions o;
+    o.measure_marginals = false;
+    return timetable::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
+  }();
+  return p;
+}
+
+const timetable::FleetModels& models(timetable::EnergyModel model,
+                                     timetable::OverlapVariant variant) {
+  static std::map<int, std::unique_ptr<timetable::FleetModels>> cache;
+  auto& slot = cache[static_cast<int>(model) * 2 + static_cast<int>(variant)];
+  if (!slot) {
+    timetable::EnergyModelOptions o;
+    o.model = model;
+    o.overlap = variant;
+    slot = std::make_unique<timetable::FleetModels>(pattern().trip, timetable::FleetProblem{}, o);
+  }
+  return *slot;
+}
+
+std::vector<int> uniform() {
+  return timetable::departures_from_headways(timetable::uniform_headways({}));
+}
+
+void BM_FullEvaluation(benchmark::State& state) {
+  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
+  auto balance = m.make_balance();
+  const auto t = uniform();
+  for (auto _ : state) {
+    balance->place_all(t);  // removes the previous placement, lays all 100 trains again
+    benchmark::DoNotOptimize(balance->used());
+  }
+}
+BENCHMARK(BM_FullEvaluation)->Unit(benchmark::kMillisecond);
+
+void BM_IncrementalMove(benchmark::State& state) {
+  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
+  auto balance = m.make_balance();
+  const auto t = uniform();
+  balance->place_all(t);
+  int k = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(balance->move(k, t[k] + 1));
+    benchmark::DoNotOptimize(balance->move(k, t[k]));
+    k = k % 98 + 1;
+  }
+  state.SetItemsProcessed(2 * state.iterations());  // moves
+}
+BENCHMARK(BM_IncrementalMove)->Unit(benchmark::kMicrosecond);
+
+void BM_OverlapExactDp(benchmark::State& state) {
+  const auto variant =
+      state.range(0) == 0 ? timetable::OverlapVariant::Ahead : timetable::OverlapVariant::Either;
+  const auto& m = models(timetable::EnergyModel::Overlap, variant);
+  for (auto _ : state) benchmark::DoNotOptimize(timetable::optimise_headways(m, {}));
+}
+BENCHMARK(BM_OverlapExactDp)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_PairBound(benchmark::State& state) {
+  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(timetable::used_regen_bound(m.profile(), m.problem()));
+}
+BENCHMARK(BM_PairBound)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_PowerFlowOptimisation(benchmark::State& state) {
+  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
+  for (auto _ : state) {
+    const auto r = timetable::optimise_headways(m, {});
+    state.counters["used_regen_kJ"] = r.summary.used_regen_J / 1e3;
+    state.counters["gap_pct"] = 100.0 * r.summary.gap_fraction;
+  }
+}
+BENCHMARK(BM_PowerFlowOptimisation)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,63 @@
+#include "cli/errors.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "data/input_error.hpp"
+#include "dp/journey_plan.hpp"
+#include "dp/time_target.hpp"
+#include "policy/advisor.hpp"
+#include "policy/ladder.hpp"
+#include "policy/policy_table.hpp"
+
+namespace ecorail::cli {
+
+namespace {
+
+int fail(int code, const std::string& message) {
+  std::cerr << "ecorail: error: " << message << "\n";
+  return code;
+}
+
+// A running time the library refused, as a command-line error on the flag that asked for it.
+std::string time_message(const dp::InfeasibleTimeError& e) {
+  if (e.subject().empty()) return e.what();
+  char text[400];
+  std::snprintf(text, sizeof text, "at least the minimum running time of %.2f s for %s; got %.2f s",
+                e.minimum_s(), e.subject().c_str(), e.requested_s());
+  return text;
+}
+
+}  // namespace
+
+int run_reporting_errors(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const data::InputError& e) {
+    return fail(2, e.what());
+  } catch (const InvalidOptionsError& e) {
+    return fail(2, std::string("invalid options: ") + e.what());
+  } catch (const policy::LadderTimeError& e) {
+    const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
+    return fail(2, data::InputError("command line", 0, flag, time_message(e)).what());
+  } catch (const dp::InfeasibleTimeError& e) {
+    return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
+  } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short
+    return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
+  } catch (const dp::DwellError& e) {
+    return fail(2, data::InputError("command line", 0, "--dwell", e.what()).what());
+  } catch (const policy::PolicyFormatError& e) {
+    return fail(2, e.what());  // names the file it read
+  } catch (const policy::PolicyMismatchError& e) {
+    return fail(2, e.what());
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+  return 0;
+}
+
+}  // namespace ecorail::cli

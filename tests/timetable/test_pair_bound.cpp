@@ -1,0 +1,107 @@
+// The power-flow certificate and optimiser on a fleet small enough to enumerate: the pair bound
+// is never below the brute-force optimum, the optimiser reaches that optimum, and the same seed
+// gives the same timetable on one and two threads.
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "fleet_fixture.hpp"
+#include "timetable/fleet_models.hpp"
+#include "timetable/headway_optimiser.hpp"
+#include "timetable/pair_bound.hpp"
+
+namespace ecorail::timetable {
+namespace {
+
+FleetProblem small_problem() {
+  FleetProblem p;
+  p.trains = 4;
+  p.headway_min_s = 80;
+  p.headway_max_s = 140;
+  p.span_s = 330;
+  return p;
+}
+
+double brute_force_used(const FleetModels& models) {
+  const FleetProblem& p = models.problem();
+  auto balance = models.make_balance();
+  MicroJoules best = 0;
+  for (int h1 = p.headway_min_s; h1 <= p.headway_max_s; ++h1)
+    for (int h2 = p.headway_min_s; h2 <= p.headway_max_s; ++h2) {
+      const int h3 = p.span_s - h1 - h2;
+      if (h3 < p.headway_min_s || h3 > p.headway_max_s) continue;
+      balance->place_all({0, h1, h1 + h2, p.span_s});
+      best = std::max(best, balance->used());
+    }
+  return to_joules(best);
+}
+
+TEST(PairBound, NeverBelowTheBruteForceOptimumAndTheOptimiserReachesIt) {
+  for (EnergyModel model : {EnergyModel::PowerFlow, EnergyModel::Sections}) {
+    EnergyModelOptions o;
+    o.model = model;
+    o.time_step_s = 0.1;
+    if (model == EnergyModel::Sections) o.section_boundaries_m = {2000.0};
+    const FleetModels models(testing::small_pattern().trip, small_problem(), o);
+    const double best = brute_force_used(models);
+    const PairBound bound = used_regen_bound(models.profile(), models.problem());
+    EXPECT_GE(bound.bound_used_J, best * (1 - 1e-12));
+    HeadwayOptimiserOptions opt;
+    opt.moves_per_run = 2000;
+    opt.polish_window_s = 60;
+    const HeadwayOptimiserResult r = optimise_headways(models, opt);
+    EXPECT_NEAR(r.summary.used_regen_J, best, 1e-9 * best) << model_name(model);
+    EXPECT_GE(r.summary.bound_used_regen_J, r.summary.used_regen_J);
+    EXPECT_GT(best, 0.0);
+  }
+}
+
+TEST(HeadwayOptimiser, SameSeedSameTimetableOnOneAndTwoThreads) {
+  FleetProblem p;
+  p.trains = 10;
+  p.headway_min_s = 80;
+  p.headway_max_s = 200;
+  p.span_s = 9 * 150;
+  EnergyModelOptions o;
+  o.time_step_s = 0.1;
+  const FleetModels models(testing::small_pattern().trip, p, o);
+  HeadwayOptimiserOptions opt;
+  opt.moves_per_run = 5000;
+  opt.seed = 42;
+  opt.threads = 1;
+  const auto one = optimise_headways(models, opt);
+  opt.threads = 2;
+  const auto two = optimise_headways(models, opt);
+  EXPECT_EQ(one.headways_s, two.headways_s);
+  EXPECT_EQ(one.summary.used_regen_J, two.summary.used_regen_J);
+  int sum = 0;
+  for (int h : one.headways_s) {
+    EXPECT_GE(h, p.headway_min_s);
+    EXPECT_LE(h, p.headway_max_s);
+    sum += h;
+  }
+  EXPECT_EQ(sum, p.span_s);
+}
+
+TEST(HeadwayOptimiser, OptionsNameTheirBadField) {
+  std::string why;
+  HeadwayOptimiserOptions o;
+  o.restarts = -1;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("restarts"), std::string::npos);
+  o = {};
+  o.time_limit_s = -1;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("time_limit_s"), std::string::npos);
+  EnergyModelOptions e;
+  e.time_step_s = 0.3;
+  EXPECT_FALSE(e.IsValid(&why));
+  EXPECT_NE(why.find("time_step_s"), std::string::npos);
+  FleetProblem p;
+  p.span_s = 100;
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("span_s"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ecorail::timetable

@@ -1,0 +1,124 @@
+#include "timetable/fleet_problem.hpp"
+
+#include <cmath>
+
+namespace ecorail::timetable {
+
+std::string_view model_name(EnergyModel m) {
+  switch (m) {
+    case EnergyModel::Overlap:
+      return "overlap";
+    case EnergyModel::Sections:
+      return "sections";
+    case EnergyModel::PowerFlow:
+      break;
+  }
+  return "power-flow";
+}
+
+std::optional<EnergyModel> model_from_name(std::string_view name) {
+  if (name == "power-flow") return EnergyModel::PowerFlow;
+  if (name == "overlap") return EnergyModel::Overlap;
+  if (name == "sections") return EnergyModel::Sections;
+  return std::nullopt;
+}
+
+std::string_view overlap_variant_name(OverlapVariant v) {
+  return v == OverlapVariant::Either ? "either" : "ahead";
+}
+
+std::optional<OverlapVariant> overlap_variant_from_name(std::string_view name) {
+  if (name == "ahead") return OverlapVariant::Ahead;
+  if (name == "either") return OverlapVariant::Either;
+  return std::nullopt;
+}
+
+bool FleetProblem::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (trains < 1 || trains > 100000) return fail("trains: expected 1 to 100000");
+  if (headway_min_s < 1) return fail("headway_min_s: expected at least 1 s");
+  if (headway_max_s < headway_min_s) return fail("headway_max_s: expected >= headway_min_s");
+  if (span_s < 0) return fail("span_s: expected >= 0");
+  if (!(std::isfinite(trip_time_s) && trip_time_s > 0.0))
+    return fail("trip_time_s: expected a positive, finite time");
+  if (!(std::isfinite(dwell_min_s) && dwell_min_s >= 0.0))
+    return fail("dwell_min_s: expected >= 0");
+  if (!(std::isfinite(dwell_max_s) && dwell_max_s >= dwell_min_s))
+    return fail("dwell_max_s: expected >= dwell_min_s");
+  const long n = trains - 1;
+  if (n == 0 && span_s != 0) return fail("span_s: one train has no headway, so the span is 0");
+  if (n > 0 && (n * headway_min_s > span_s || n * headway_max_s < span_s)) {
+    return fail("span_s: " + std::to_string(n) + " headways in [" + std::to_string(headway_min_s) +
+                ", " + std::to_string(headway_max_s) + "] s sum to " +
+                std::to_string(n * headway_min_s) + " to " + std::to_string(n * headway_max_s) +
+                " s, not " + std::to_string(span_s) + " s");
+  }
+  return true;
+}
+
+bool EnergyModelOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(std::isfinite(time_step_s) && time_step_s >= 1e-4 && time_step_s <= 1.0))
+    return fail("time_step_s: expected 0.0001 to 1 s");
+  const double ticks = 1.0 / time_step_s;
+  if (std::fabs(ticks - std::round(ticks)) > 1e-6 * ticks)
+    return fail("time_step_s: expected a step that divides one second (1, 0.5, 0.1, 0.01, ...)");
+  double last = 0.0;
+  for (double b : section_boundaries_m) {
+    if (!(std::isfinite(b) && b > last))
+      return fail("section_boundaries_m: expected increasing positions > 0 m");
+    last = b;
+  }
+  return true;
+}
+
+int EnergyModelOptions::ticks_per_second() const {
+  return static_cast<int>(std::lround(1.0 / time_step_s));
+}
+
+std::vector<int> departures_from_headways(const std::vector<int>& headways_s) {
+  std::vector<int> t{0};
+  for (int h : headways_s) t.push_back(t.back() + h);
+  return t;
+}
+
+std::vector<int> headways_from_departures(const std::vector<int>& departures_s) {
+  std::vector<int> h;
+  for (std::size_t k = 1; k < departures_s.size(); ++k)
+    h.push_back(departures_s[k] - departures_s[k - 1]);
+  return h;
+}
+
+std::string departures_problem(const FleetProblem& p, const std::vector<int>& t) {
+  if (static_cast<int>(t.size()) != p.trains)
+    return std::to_string(t.size()) + " departures, expected " + std::to_string(p.trains);
+  if (t.empty()) return "";
+  if (t.front() != 0) return "the first departure is at " + std::to_string(t.front()) + " s, not 0";
+  if (t.back() != p.span_s)
+    return "the last departure is at " + std::to_string(t.back()) + " s, not the span " +
+           std::to_string(p.span_s) + " s (headways sum to " + std::to_string(t.back()) + " s)";
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    const int h = t[k] - t[k - 1];
+    if (h < p.headway_min_s || h > p.headway_max_s)
+      return "headway " + std::to_string(k) + " is " + std::to_string(h) + " s, outside [" +
+             std::to_string(p.headway_min_s) + ", " + std::to_string(p.headway_max_s) + "] s";
+  }
+  return "";
+}
+
+std::vector<int> uniform_headways(const FleetProblem& p) {
+  const int n = p.trains - 1;
+  std::vector<int> h;
+  if (n <= 0) return h;
+  const int base = p.span_s / n, extra = p.span_s % n;
+  for (int k = 0; k < n; ++k) h.push_back(base + (k < extra ? 1 : 0));
+  return h;
+}
+
+}  // namespace ecorail::timetable

@@ -1,0 +1,133 @@
+#include "timetable/power_balance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ecorail::timetable {
+
+PowerBalance::PowerBalance(std::vector<const PowerProfile*> profiles, double horizon_s)
+    : profiles_(std::move(profiles)), departure_s_(profiles_.size(), -1) {
+  if (profiles_.empty()) throw std::invalid_argument("a power balance needs at least one train");
+  ticks_per_second_ = profiles_.front()->ticks_per_second();
+  sections_ = profiles_.front()->sections();
+  for (const PowerProfile* p : profiles_) {
+    if (p->ticks_per_second() != ticks_per_second_ || p->sections() != sections_)
+      throw std::invalid_argument("every profile of a power balance needs the same grid");
+  }
+  bins_ = static_cast<long>(std::ceil(horizon_s * ticks_per_second_)) + 1;
+  traction_bins_.assign(static_cast<std::size_t>(sections_) * bins_, 0);
+  regen_bins_.assign(traction_bins_.size(), 0);
+}
+
+void PowerBalance::add(int train, int departure_s, int sign) {
+  const PowerProfile& p = *profiles_[train];
+  const long base = static_cast<long>(departure_s) * ticks_per_second_;
+  if (departure_s < 0 || base + p.span_bins() > bins_)
+    throw std::out_of_range("a departure outside the power balance's horizon");
+  MicroJoules used = used_;
+  MicroJoules* tb = traction_bins_.data();
+  MicroJoules* rb = regen_bins_.data();
+  for (const PowerBin& b : p.bins()) {
+    const std::size_t i = index(b.section, base + b.offset);
+    used -= std::min(tb[i], rb[i]);
+    tb[i] += sign * b.traction;
+    rb[i] += sign * b.regen;
+    used += std::min(tb[i], rb[i]);
+  }
+  used_ = used;
+  traction_ += sign * p.traction_total();
+  regen_ += sign * p.regen_total();
+}
+
+void PowerBalance::place_all(const std::vector<int>& departures_s) {
+  if (departures_s.size() != profiles_.size())
+    throw std::invalid_argument("one departure per train expected");
+  for (int k = 0; k < trains(); ++k) {
+    if (placed(k)) add(k, departure_s_[k], -1);
+  }
+  for (int k = 0; k < trains(); ++k) {
+    add(k, departures_s[k], +1);
+    departure_s_[k] = departures_s[k];
+  }
+}
+
+MicroJoules PowerBalance::move(int train, int departure_s) {
+  const MicroJoules before = used_;
+  add(train, departure_s_[train], -1);
+  add(train, departure_s, +1);
+  departure_s_[train] = departure_s;
+  return used_ - before;
+}
+
+FleetEnergy PowerBalance::energy() const {
+  return {to_joules(traction_), to_joules(regen_), to_joules(used_)};
+}
+
+MicroJoules PowerBalance::recount_used() const {
+  MicroJoules used = 0;
+  for (std::size_t i = 0; i < traction_bins_.size(); ++i)
+    used += std::min(traction_bins_[i], regen_bins_[i]);
+  return used;
+}
+
+std::vector<FleetEnergy> PowerBalance::section_energy() const {
+  std::vector<FleetEnergy> out(sections_);
+  for (int s = 0; s < sections_; ++s) {
+    MicroJoules t = 0, r = 0, u = 0;
+    for (long b = 0; b < bins_; ++b) {
+      const std::size_t i = index(s, b);
+      t += traction_bins_[i];
+      r += regen_bins_[i];
+      u += std::min(traction_bins_[i], regen_bins_[i]);
+    }
+    out[s] = {to_joules(t), to_joules(r), to_joules(u)};
+  }
+  return out;
+}
+
+std::vector<FleetEnergy> PowerBalance::train_energy() const {
+  std::vector<FleetEnergy> out(profiles_.size());
+  for (int k = 0; k < trains(); ++k) {
+    const PowerProfile& p = *profiles_[k];
+    out[k].traction_J = to_joules(p.traction_total());
+    out[k].regen_J = to_joules(p.regen_total());
+    if (!placed(k)) continue;
+    const long base = static_cast<long>(departure_s_[k]) * ticks_per_second_;
+    double used = 0.0;
+    for (const PowerBin& b : p.bins()) {
+      if (b.regen == 0) continue;
+      const std::size_t i = index(b.section, base + b.offset);
+      const MicroJoules u = std::min(traction_bins_[i], regen_bins_[i]);
+      used += static_cast<double>(u) * static_cast<double>(b.regen) /
+              static_cast<double>(regen_bins_[i]);
+    }
+    out[k].used_regen_J = used / kMicroJoulesPerJoule;
+  }
+  return out;
+}
+
+PowerBalance::Trace PowerBalance::trace(double from_s, double to_s) const {
+  Trace out;
+  const double step = 1.0 / ticks_per_second_;
+  out.step_s = step;
+  const long b0 = std::clamp(static_cast<long>(std::floor(from_s * ticks_per_second_)), 0L, bins_);
+  const long b1 = std::clamp(static_cast<long>(std::ceil(to_s * ticks_per_second_)), b0, bins_);
+  out.start_s = static_cast<double>(b0) * step;
+  const double per_bin = kMicroJoulesPerJoule * step;  // uJ per bin -> W
+  for (long b = b0; b < b1; ++b) {
+    MicroJoules t = 0, r = 0, u = 0;
+    for (int s = 0; s < sections_; ++s) {
+      const std::size_t i = index(s, b);
+      t += traction_bins_[i];
+      r += regen_bins_[i];
+      u += std::min(traction_bins_[i], regen_bins_[i]);
+    }
+    out.traction_W.push_back(static_cast<double>(t) / per_bin);
+    out.regen_W.push_back(static_cast<double>(r) / per_bin);
+    out.used_W.push_back(static_cast<double>(u) / per_bin);
+  }
+  return out;
+}
+
+}  // namespace ecorail::timetable
