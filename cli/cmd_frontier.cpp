@@ -1,13 +1,17 @@
 // `ecorail frontier`: energy-time frontiers of one section or of every section of a line, with
 // a cache keyed by line, train, grid and range (output::FileFrontierStore: a corrupt or stale
 // entry is recomputed, never trusted) so the fleet work can reuse them for free.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <optional>
 
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
+#include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
+#include "data/atomic_file.hpp"
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/line.hpp"
 #include "data/route_builder.hpp"
@@ -16,6 +20,7 @@
 #include "dp/threads.hpp"
 #include "output/frontier_cache.hpp"
 #include "output/frontier_io.hpp"
+#include "output/gnuplot.hpp"
 #include "output/run_json.hpp"
 #include "physics/units.hpp"
 
@@ -56,12 +61,26 @@ output::LabelledFrontier frontier_for(const Problem& p, const FrontierArgs& a,
   }
   const physics::Route route = data::build_route(p.line, from, to, p.train);
   const dp::SectionEngine engine(p.train, route, engine_opts);
-  output::LabelledFrontier lf{from, to, dp::compute_frontier(engine, options)};
+  output::LabelledFrontier lf{from, to, {}};
+  try {
+    lf.frontier = dp::compute_frontier(engine, options);
+  } catch (const dp::InfeasibleTimeError& e) {
+    // Name the flag that asked for the impossible time (--tmin, else --tmax).
+    const bool tmin = a.t_min > 0.0 && a.t_min < e.minimum_s();
+    throw data::InputError("command line", 0, tmin ? "--tmin" : "--tmax",
+                           "at least the minimum running time of " +
+                               data::format_number(std::round(e.minimum_s() * 100) / 100) +
+                               " s for " + from + " -> " + to + " (flat-out run); got " +
+                               data::format_number(tmin ? a.t_min : a.t_max) + " s");
+  }
   if (cache != nullptr) cache->save(key, lf.frontier);
   return lf;
 }
 
 void run_frontier(const FrontierArgs& a) {
+  // Every output target is checked before any work.
+  check_output_targets(
+      {{"--json", a.json, false}, {"--csv", a.csv, false}, {"--plot", a.plot, true}});
   if (!(a.step > 0.0)) throw data::InputError("command line", 0, "--step", "a step in s > 0");
   dp::FrontierOptions options;
   options.t_min_s = a.t_min;
@@ -116,11 +135,15 @@ void run_frontier(const FrontierArgs& a) {
     }
   }
   if (failure) std::rethrow_exception(failure);
-  std::printf("%-8s %-8s %10s %8s %14s %14s %8s %7s %8s\n", "from", "to", "min_time_s", "points",
-              "E(first)_kJ", "E(last)_kJ", "monotone", "convex", "wobbles");
+  // The frontier's energy is the objective's cost: traction input energy (traction work divided
+  // by the traction efficiency) or net energy; the header says which.
+  const bool net = a.problem.objective == "net";
+  std::printf("%-8s %-8s %10s %8s %19s %19s %8s %7s %8s\n", "from", "to", "min_time_s", "points",
+              net ? "net_E(first)_kJ" : "input_E(first)_kJ",
+              net ? "net_E(last)_kJ" : "input_E(last)_kJ", "monotone", "convex", "wobbles");
   for (const auto& lf : frontiers) {
     const auto& f = lf.frontier;
-    std::printf("%-8s %-8s %10.3f %8zu %14.1f %14.1f %8s %7s %8zu\n", lf.from.c_str(),
+    std::printf("%-8s %-8s %10.3f %8zu %19.1f %19.1f %8s %7s %8zu\n", lf.from.c_str(),
                 lf.to.c_str(), f.min_time_s, f.points.size(),
                 units::J_to_kJ(f.points.front().cost_J), units::J_to_kJ(f.points.back().cost_J),
                 f.monotone ? "yes" : "NO", f.convex ? "yes" : "NO", f.wobbles.size());
@@ -129,17 +152,25 @@ void run_frontier(const FrontierArgs& a) {
                   w.kind.c_str(), w.time_s, w.size_J / 1000.0);
     }
   }
+  // All outputs or none: temporaries renamed together once every one was written.
+  data::OutputBatch batch;
   if (!a.json.empty()) {
     nlohmann::json j = nlohmann::json::array();
     for (const auto& lf : frontiers) j.push_back(output::frontier_json(lf));
     nlohmann::json doc = a.all ? nlohmann::json{{"frontiers", j}} : j[0];
     doc["grid"] = {{"ds_m", a.problem.ds_m}, {"dv_kmh", a.problem.dv_kmh}};
-    output::write_json(a.json, doc);
+    batch.add(a.json, [&](std::ostream& o) { output::write_json(o, doc); });
   }
-  if (!a.csv.empty()) output::write_frontiers_csv(a.csv, frontiers);
+  if (!a.csv.empty())
+    batch.add(a.csv, [&](std::ostream& o) { output::write_frontiers_csv(o, frontiers); });
   if (!a.plot.empty()) {
-    output::write_frontiers_plot_svg(a.plot, frontiers, "energy-time frontier");
+    const std::string objective = net ? "net energy" : "traction input energy";
+    batch.add_produced(a.plot, [&](const std::filesystem::path& f) {
+      output::write_frontiers_plot_file(f, frontiers, "energy-time frontier", objective,
+                                        *output::plot_format_for(a.plot));
+    });
   }
+  batch.commit();
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "cli/errors.hpp"
 #include "cli/problem_options.hpp"
 #include "data/atomic_file.hpp"
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
 #include "physics/units.hpp"
@@ -151,6 +152,22 @@ void run_inspect(const PolicyArgs& a) {
         a.inspect, 0, "", std::string("a policy table for this line and train (") + e.what() + ")");
   }
   std::printf("matches line '%s' and train '%s'\n", p.line.name.c_str(), p.train.name.c_str());
+  // A state outside the section or the train's speeds has no advice: an error, not a guess.
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const auto [s_m, v_kmh] = states[i];
+    const double length_m = advisor->table().route_length_m;
+    const double vmax_kmh = units::ms_to_kmh(p.train.max_speed_ms);
+    if (!(s_m >= 0.0 && s_m <= length_m)) {
+      throw data::InputError("command line", 0, "--at",
+                             "a position from 0 to the section length " +
+                                 data::format_number(length_m) + " m; got '" + a.at[i] + "'");
+    }
+    if (!(v_kmh >= 0.0 && v_kmh <= vmax_kmh)) {
+      throw data::InputError("command line", 0, "--at",
+                             "a speed from 0 to the train's maximum speed " +
+                                 data::format_number(vmax_kmh) + " km/h; got '" + a.at[i] + "'");
+    }
+  }
   for (const auto& [s_m, v_kmh] : states) {
     for (std::size_t k = 0; k < advisor->table().layers.size(); ++k) {
       const policy::Advice adv = advisor->advise(static_cast<int>(k), s_m, units::kmh_to_ms(v_kmh));

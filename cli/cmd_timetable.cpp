@@ -44,7 +44,7 @@ struct TimetableArgs {
   std::uint64_t seed = 1;
   double time_limit_s = 0.0;
   int restarts = 2;
-  long moves = 1000000;
+  long moves = 2000000;
   double anneal_step_s = 1.0;
   std::string json, csv, xlsx, diagram, power_plot;
   std::string window = "0:7200";

@@ -32,6 +32,21 @@ std::string time_message(const dp::InfeasibleTimeError& e) {
 }  // namespace
 
 int run_reporting_errors(CLI::App& app, int argc, char** argv) {
+  // CLI11's own messages get the program's prefix and stay on one line.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("ecorail: error: ") + e.what() + " (see --help)\n";
+  });
+  // A first word that is no command and no flag: say which word, and list the commands.
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known |= sub->check_name(argv[1]);
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known)
+      return fail(2, "unknown command '" + std::string(argv[1]) + "'; commands: " + names);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,10 +1,12 @@
 // ecorail: energy-optimal train driving. See README.md for the commands.
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
+#include "data/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ecorail: energy-optimal driving of metro trains"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", ecorail::data::version_string());
   ecorail::cli::add_solve_command(app);
   ecorail::cli::add_min_time_command(app);
   ecorail::cli::add_fit_envelope_command(app);

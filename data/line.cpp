@@ -51,6 +51,12 @@ std::uint64_t Line::checksum() const {
   return fnv1a64(text);
 }
 
+std::string hex64(std::uint64_t value) {
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(value));
+  return buf;
+}
+
 std::uint64_t fnv1a64(std::string_view text) {
   std::uint64_t h = 14695981039346656037ULL;
   for (const char c : text) {

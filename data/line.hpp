@@ -43,5 +43,7 @@ struct Line {
 
 // FNV-1a, 64 bits: the hash behind Line::checksum and train_checksum.
 std::uint64_t fnv1a64(std::string_view text);
+// A checksum as 16 lower-case hex digits ("1c217a07a6df55fb"), as reports and files write it.
+std::string hex64(std::uint64_t value);
 
 }  // namespace ecorail::data

@@ -93,6 +93,10 @@ Frontier compute_frontier(const SectionEngine& engine, const FrontierOptions& op
   Frontier f;
   const physics::SimulationResult flat_out = engine.min_time_run();
   f.min_time_s = flat_out.running_time_s;
+  // A first time below the flat-out run is refused, never moved up silently.
+  if (options.t_min_s > 0.0 && options.t_min_s < f.min_time_s - 1e-9) {
+    throw InfeasibleTimeError(options.t_min_s, f.min_time_s);
+  }
   const double t_min = std::max(options.t_min_s, f.min_time_s);
   const double t_max = options.t_max_s > 0.0 ? options.t_max_s : f.min_time_s + 60.0;
   if (!(options.step_s > 0.0)) throw std::invalid_argument("frontier step must be positive");

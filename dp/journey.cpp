@@ -224,17 +224,9 @@ std::string JourneySummary::FullReport() const {
   r += format_text("  %-28s %d lambda evaluations\n", "Search", lambda_evaluations);
   r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
                    search_wall_s, total_wall_s);
-  r += "\n  Re-simulated result\n";
-  r += format_text("  %-28s %.4f s\n", "Running time", running_time_s);
-  r += format_text("  %-28s %.3f kJ\n", "Traction energy", traction_energy_kJ);
-  r += format_text("  %-28s %.3f kJ\n", "Braking work", braking_energy_kJ);
-  r += format_text("  %-28s %.3f kJ\n", "Regenerated energy", regen_energy_kJ);
-  r += format_text("  %-28s %.3f kJ\n", "Net energy", net_energy_kJ);
-  r += format_text("  %-28s %.4f m\n", "Stop error (largest)", stop_error_m);
-  r += format_text("  %-28s %.4f km/h\n", "Max overspeed", max_overspeed_kmh);
-  r += format_text("\n  %-28s %s\n", "Termination",
-                   std::string(termination_name(termination)).c_str());
-  for (const auto& w : warnings) r += "  warning: " + w + "\n";
+  r += result_block_text({running_time_s, traction_energy_kJ, braking_energy_kJ, regen_energy_kJ,
+                          net_energy_kJ, "Stop error (largest)", stop_error_m, max_overspeed_kmh,
+                          termination, &warnings});
   return r;
 }
 

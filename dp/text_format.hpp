@@ -3,6 +3,9 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
+
+#include "dp/termination.hpp"
 
 namespace ecorail::dp {
 
@@ -11,6 +14,31 @@ std::string format_text(const char* fmt, Args... args) {
   char buf[512];
   std::snprintf(buf, sizeof buf, fmt, args...);
   return buf;
+}
+
+// The "Re-simulated result" block that ends a section's or a journey's full report, so both
+// name and format the same figures alike (stop_label: "Stop error", "Stop error (largest)").
+struct ResultBlock {
+  double running_time_s, traction_energy_kJ, braking_energy_kJ, regen_energy_kJ, net_energy_kJ;
+  const char* stop_label;
+  double stop_error_m, max_overspeed_kmh;
+  Termination termination;
+  const std::vector<std::string>* warnings;
+};
+inline std::string result_block_text(const ResultBlock& b) {
+  std::string r = "\n  Re-simulated result\n";
+  r += format_text("  %-28s %.4f s\n", "Running time", b.running_time_s);
+  r += format_text("  %-28s %.3f kJ\n", "Traction energy", b.traction_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Braking work", b.braking_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Regenerated energy", b.regen_energy_kJ);
+  r += format_text("  %-28s %.3f kJ\n", "Net energy", b.net_energy_kJ);
+  r += format_text("  %-28s %.4f m\n", b.stop_label, b.stop_error_m);
+  r += format_text("  %-28s %.4f km/h\n", "Max overspeed", b.max_overspeed_kmh);
+  r += format_text("\n  %-28s %s\n", "Termination",
+                   std::string(termination_name(b.termination)).c_str());
+  if (b.warnings != nullptr)
+    for (const auto& w : *b.warnings) r += "  warning: " + w + "\n";
+  return r;
 }
 
 }  // namespace ecorail::dp

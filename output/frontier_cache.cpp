@@ -14,12 +14,6 @@ namespace ecorail::output {
 
 namespace {
 
-std::string hex64(std::uint64_t v) {
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
-
 bool sound(const dp::Frontier& f) {
   if (f.points.size() < 2) return false;
   for (std::size_t k = 0; k < f.points.size(); ++k) {
@@ -46,7 +40,7 @@ std::filesystem::path FileFrontierStore::default_directory() {
 }
 
 std::filesystem::path FileFrontierStore::path_for(const std::string& key) const {
-  return directory_ / (hex64(data::fnv1a64(key)) + ".json");
+  return directory_ / (data::hex64(data::fnv1a64(key)) + ".json");
 }
 
 std::optional<dp::Frontier> FileFrontierStore::load(const std::string& key) {
@@ -58,7 +52,7 @@ std::optional<dp::Frontier> FileFrontierStore::load(const std::string& key) {
     const nlohmann::json doc = nlohmann::json::parse(in);
     if (doc.at("key").get<std::string>() != key) return std::nullopt;  // stale or a collision
     const nlohmann::json& body = doc.at("frontier");
-    if (doc.at("checksum").get<std::string>() != hex64(data::fnv1a64(body.dump()))) {
+    if (doc.at("checksum").get<std::string>() != data::hex64(data::fnv1a64(body.dump()))) {
       return std::nullopt;  // edited or damaged
     }
     dp::Frontier f = frontier_from_json(body).frontier;
@@ -75,7 +69,7 @@ void FileFrontierStore::save(const std::string& key, const dp::Frontier& frontie
   if (ec) return;
   const nlohmann::json body = frontier_json({"", "", frontier});
   const nlohmann::json doc = {
-      {"key", key}, {"checksum", hex64(data::fnv1a64(body.dump()))}, {"frontier", body}};
+      {"key", key}, {"checksum", data::hex64(data::fnv1a64(body.dump()))}, {"frontier", body}};
   try {
     data::write_atomically(path_for(key), [&](std::ostream& out) { out << doc.dump() << "\n"; });
   } catch (const std::exception&) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "data/line.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "dp/backward_sweep.hpp"
@@ -13,12 +14,6 @@
 namespace ecorail::policy {
 
 namespace {
-
-std::string hex64(std::uint64_t x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(x));
-  return buf;
-}
 
 // Preference among controls whose look-ahead scores tie (several controls clamped onto the same
 // braking curve, or hold and traction on a limit): the least traction first, so the advice on a
@@ -54,14 +49,14 @@ Advisor::Advisor(PolicyTable table, const data::Line& line, const physics::Train
   std::string mismatch;
   if (line_sum != table_.line_checksum) {
     mismatch += "line checksum differs: the table was made for line '" + table_.line_name + "' (" +
-                hex64(table_.line_checksum) + "), this is line '" + line.name + "' (" +
-                hex64(line_sum) + ")";
+                "0x" + data::hex64(table_.line_checksum) + "), this is line '" + line.name + "' (" +
+                "0x" + data::hex64(line_sum) + ")";
   }
   if (train_sum != table_.train_checksum) {
     if (!mismatch.empty()) mismatch += "; ";
     mismatch += "train checksum differs: the table was made for train '" + table_.train_name +
-                "' (" + hex64(table_.train_checksum) + "), this is train '" + train.name + "' (" +
-                hex64(train_sum) + ")";
+                "' (" + "0x" + data::hex64(table_.train_checksum) + "), this is train '" +
+                train.name + "' (" + "0x" + data::hex64(train_sum) + ")";
   }
   if (!mismatch.empty()) {
     throw PolicyMismatchError("policy table " + table_.from + " -> " + table_.to +

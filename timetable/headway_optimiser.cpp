@@ -140,18 +140,6 @@ long polish(PowerBalance& balance, const FleetProblem& p, std::vector<int>& t, i
 
 }  // namespace
 
-std::string_view termination_name(Termination t) {
-  switch (t) {
-    case Termination::Convergence:
-      return "CONVERGENCE";
-    case Termination::NoConvergence:
-      return "NO_CONVERGENCE";
-    case Termination::Failure:
-      break;
-  }
-  return "FAILURE";
-}
-
 bool HeadwayOptimiserOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& why) {
     if (error) *error = why;
@@ -249,7 +237,7 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
     s.bound_used_regen_J = s.used_regen_J;
     s.substation_J = out.evaluation.total.substation_J();
     s.gap_fraction = 0.0;
-    s.termination = Termination::Convergence;
+    s.termination = Termination::CONVERGENCE;
     s.wall_s = seconds_since(t0);
     return out;
   }
@@ -293,24 +281,43 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
     results[r] = anneal(coarse, starts[r % starts.size()], options.seed, r, options.moves_per_run,
                         t0, options.time_limit_s);
   }
-  // Polish every start and every annealed result on the fine grid; keep the best (ties: the
-  // first), so the outcome does not depend on which thread ran what.
-  std::vector<std::vector<int>> candidates = starts;
+  // Polish every annealed result (the starts themselves when there is no annealing): first on
+  // a 0.1 s grid over the whole window, then on the model's grid within +-3 s, the candidates
+  // side by side. The best wins (ties: the first), so the outcome does not depend on which
+  // thread ran what.
+  std::vector<std::vector<int>> candidates;
   for (const auto& r : results) {
     candidates.push_back(r.departures);
     s.moves += r.moves;
     s.time_limit_reached |= r.stopped;
   }
+  if (candidates.empty()) candidates = starts;
   report("annealing done", s.start_used_J, NAN);
-  auto balance = models.make_balance();
-  MicroJoules best_used = -1;
-  std::vector<int> best;
-  for (auto& t : candidates) {
+  EnergyModelOptions mid_options = eo;
+  mid_options.time_step_s = std::max(eo.time_step_s, 0.1);
+  const FleetModels mid(models.trip(), p, mid_options);
+  std::vector<MicroJoules> polished(candidates.size(), 0);
+  std::vector<long> polish_moves(candidates.size(), 0);
+  const int n_candidates = static_cast<int>(candidates.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int c = 0; c < n_candidates; ++c) {
+    auto& t = candidates[c];
+    auto coarse_balance = mid.make_balance();
+    coarse_balance->place_all(t);
+    polish_moves[c] += polish(*coarse_balance, p, t, options.polish_window_s);
+    coarse_balance.reset();
+    auto balance = models.make_balance();
     balance->place_all(t);
-    s.moves += polish(*balance, p, t, options.polish_window_s);
-    if (balance->used() > best_used) best_used = balance->used(), best = t;
-    report("polish", to_joules(best_used), NAN);
+    polish_moves[c] += polish(*balance, p, t, std::min(3, options.polish_window_s));
+    polished[c] = balance->used();
   }
+  std::size_t best_c = 0;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    s.moves += polish_moves[c];
+    if (polished[c] > polished[best_c]) best_c = c;
+  }
+  const std::vector<int>& best = candidates[best_c];
+  report("polish", to_joules(polished[best_c]), NAN);
   const PairBound bound = used_regen_bound(fine, p);
   out.headways_s = headways_from_departures(best);
   out.evaluation = models.evaluate(best);
@@ -322,7 +329,7 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
       std::min({bound.bound_used_J, out.evaluation.total.regen_J, out.evaluation.total.traction_J});
   s.gap_fraction = (s.bound_used_regen_J - s.used_regen_J) / s.substation_J;
   s.pair_sum_J = pair_sum_J(fine, best);
-  s.termination = s.time_limit_reached ? Termination::NoConvergence : Termination::Convergence;
+  s.termination = s.time_limit_reached ? Termination::NO_CONVERGENCE : Termination::CONVERGENCE;
   if (s.time_limit_reached) s.message = "the time limit stopped the annealing early";
   s.wall_s = seconds_since(t0);
   report("done", s.used_regen_J, s.bound_used_regen_J);

@@ -21,12 +21,15 @@
 #include <string_view>
 #include <vector>
 
+#include "dp/termination.hpp"
 #include "timetable/fleet_models.hpp"
 
 namespace ecorail::timetable {
 
-enum class Termination { Convergence, NoConvergence, Failure };
-std::string_view termination_name(Termination t);  // "CONVERGENCE", ...
+// How the optimiser ended, named as every solver names it (dp/termination.hpp). A timetable
+// found before --time-limit stopped the search is feasible and usable but NO_CONVERGENCE.
+using dp::Termination;
+using dp::termination_name;
 
 struct OptimiserProgress {
   double elapsed_s = 0.0;
@@ -38,7 +41,7 @@ struct OptimiserProgress {
 struct HeadwayOptimiserOptions {
   std::uint64_t seed = 1;
   int restarts = 2;              // annealing runs per start
-  long moves_per_run = 1000000;  // annealing moves of one run
+  long moves_per_run = 2000000;  // annealing moves of one run
   int polish_window_s = 20;      // a polish tries departures within +-window of the current
   // Step of the annealing's power balance (s, divides 1 s; the model's step if that is
   // coarser); the polish then works on the model's own step.
@@ -50,7 +53,7 @@ struct HeadwayOptimiserOptions {
 };
 
 struct HeadwayOptimiserSummary {
-  Termination termination = Termination::Failure;
+  Termination termination = Termination::FAILURE;
   std::string method;
   bool exact = false;  // the optimum is proven (exact DP)
   double used_regen_J = 0.0;
@@ -66,7 +69,7 @@ struct HeadwayOptimiserSummary {
   double wall_s = 0.0;
   bool time_limit_reached = false;
   std::string message;
-  bool IsSolutionUsable() const { return termination != Termination::Failure; }
+  bool IsSolutionUsable() const { return termination != Termination::FAILURE; }
   std::string BriefReport() const;
   std::string FullReport() const;
 };

@@ -3,6 +3,8 @@
 // overspeed under 0.05 km/h, and energy never more than 0.1 % above the independent optimum.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <cstdio>
 
@@ -21,6 +23,11 @@ struct Case {
   const char* to;
   double time_s;
 };
+
+// Printed in test listings as "A6 -> A7 in 110 s", not as raw bytes.
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.from << " -> " << c.to << " in " << c.time_s << " s";
+}
 
 class SectionOptimality : public ::testing::TestWithParam<Case> {};
 

@@ -2,6 +2,8 @@
 // and on a 20 per mille descent where the train converges to its balancing speed.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 
 #include "physics/coasting.hpp"
@@ -17,6 +19,11 @@ struct CoastCase {
   double v0_kmh;
   double distance_m;
 };
+
+// Printed in test listings by name and gradient, not as raw bytes.
+void PrintTo(const CoastCase& c, std::ostream* os) {
+  *os << c.name << " (" << c.gradient_permille << " per mille from " << c.v0_kmh << " km/h)";
+}
 
 class CoastingAgreement : public ::testing::TestWithParam<CoastCase> {};
 
