@@ -6,6 +6,7 @@
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "output/run_json.hpp"
+#include "physics/trip.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -34,8 +35,9 @@ void run_min_time(const MinTimeArgs& a) {
   j["to"] = p.route.to_name();
   j["distance_m"] = p.route.length_m();
   j["min_running_time_s"] = sim.running_time_s;
-  output::Timeline timeline;
-  output::append_section(timeline, sim, p.route, 0);
+  // The per-second table is read from the run laid out as a trip.
+  const output::Timeline timeline =
+      output::trip_timeline(physics::Trip({{&p.route, &sim, 0.0}}, 0.0, p.train.regen_efficiency));
   char title[200];
   std::snprintf(title, sizeof title, "%s -> %s flat out: %.2f s", p.route.from_name().c_str(),
                 p.route.to_name().c_str(), sim.running_time_s);

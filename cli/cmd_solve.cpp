@@ -13,6 +13,7 @@
 #include "dp/journey.hpp"
 #include "dp/section_solve.hpp"
 #include "output/run_json.hpp"
+#include "physics/trip.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -81,8 +82,9 @@ void run_solve(const SolveArgs& a) {
         "no output was written");
   }
   print_regimes(solution.regimes);
-  output::Timeline timeline;
-  output::append_section(timeline, solution.run.sim, p.route, 0);
+  // The per-second table is read from the run laid out as a trip.
+  const output::Timeline timeline = output::trip_timeline(
+      physics::Trip({{&p.route, &solution.run.sim, 0.0}}, 0.0, p.train.regen_efficiency));
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);

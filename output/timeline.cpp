@@ -33,18 +33,30 @@ void append_dwell(Timeline& timeline, double dwell_s) {
   timeline.push_back(p);
 }
 
+Timeline trip_timeline(const physics::Trip& trip) {
+  Timeline timeline;
+  for (const physics::Trip::Sample& p : trip.samples()) {
+    if (p.dwelling) {
+      append_dwell(timeline, p.t_s - timeline.back().t_s);
+      continue;
+    }
+    const physics::Route& route = trip.route(p.section);
+    const double local = p.s_m - trip.section_start_m(p.section);
+    const double s = std::min(local, route.length_m());
+    const physics::RouteSegment& seg = route.at(std::max(0.0, s - 1e-9));
+    timeline.push_back({p.t_s, p.s_m, p.v_ms, p.accel_m_s2, p.force_N, route.km_post_m(local),
+                        seg.gradient_permille, route.speed_limit_ms(s), p.regime, false, p.section,
+                        seg.curve_radius_m});
+  }
+  return timeline;
+}
+
 Timeline journey_timeline(const dp::JourneySolution& solution,
                           const std::vector<physics::Route>& routes) {
   if (routes.size() != solution.sections.size()) {
     throw std::invalid_argument("a journey timeline needs one route per section");
   }
-  Timeline timeline;
-  for (std::size_t i = 0; i < solution.sections.size(); ++i) {
-    append_section(timeline, solution.sections[i].run.sim, routes[i], static_cast<int>(i));
-    if (i + 1 < solution.sections.size())
-      append_dwell(timeline, solution.sections[i].dwell_after_s);
-  }
-  return timeline;
+  return trip_timeline(dp::journey_trip(solution, routes, 0.0, 1.0));
 }
 
 Timeline per_second(const Timeline& timeline) {

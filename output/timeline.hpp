@@ -10,6 +10,7 @@
 #include "dp/journey.hpp"
 #include "physics/route.hpp"
 #include "physics/simulator.hpp"
+#include "physics/trip.hpp"
 
 namespace ecorail::output {
 
@@ -35,8 +36,12 @@ void append_section(Timeline& timeline, const physics::SimulationResult& sim,
                     const physics::Route& route, int section);
 // Appends a dwell at the last point of the timeline.
 void append_dwell(Timeline& timeline, double dwell_s);
+// A trip laid out for reporting: its samples on the trip's own time axis (0 at departure), with
+// the kilometre post and track data of each point. The per-second tables of sections and
+// journeys are read from here.
+Timeline trip_timeline(const physics::Trip& trip);
 // A journey laid out for reporting: each section's re-simulated run, with its dwell after it
-// (routes: the journey's, one per section).
+// (routes: the journey's, one per section); the timeline of dp::journey_trip.
 Timeline journey_timeline(const dp::JourneySolution& solution,
                           const std::vector<physics::Route>& routes);
 // Samples at t = 1, 2, ... s and at the final instant, interpolating linearly in time.

@@ -53,24 +53,24 @@ double OverlapModel::traction_overlap2(double a, double b, double s1, double s2)
   return total;
 }
 
-double OverlapModel::used_from_ahead_J(double ahead_s) const {
+double OverlapModel::used_with_traction_shift(double shift_s) const {
   double used = 0.0;
   for (const auto& p : braking_) {
     const double len = p.time.end_s - p.time.begin_s;
     if (len > 0.0)
-      used += p.regen_J * traction_overlap(p.time.begin_s, p.time.end_s, -ahead_s) / len;
+      used += p.regen_J * traction_overlap(p.time.begin_s, p.time.end_s, shift_s) / len;
   }
   return used;
 }
 
+// The train ahead departed ahead_s earlier: on the braking train's clock its traction is shifted
+// back; the train behind's is shifted forward.
+double OverlapModel::used_from_ahead_J(double ahead_s) const {
+  return used_with_traction_shift(-ahead_s);
+}
+
 double OverlapModel::used_from_behind_J(double behind_s) const {
-  double used = 0.0;
-  for (const auto& p : braking_) {
-    const double len = p.time.end_s - p.time.begin_s;
-    if (len > 0.0)
-      used += p.regen_J * traction_overlap(p.time.begin_s, p.time.end_s, behind_s) / len;
-  }
-  return used;
+  return used_with_traction_shift(behind_s);
 }
 
 double OverlapModel::double_count_J(double ahead_s, double behind_s) const {

@@ -56,6 +56,8 @@ class OverlapModel {
   // both shifted copies at once).
   double traction_overlap(double a, double b, double shift) const;
   double traction_overlap2(double a, double b, double shift1, double shift2) const;
+  // Used energy of the braking phases when the other train's traction is shifted by shift_s.
+  double used_with_traction_shift(double shift_s) const;
 
   std::vector<Interval> traction_;
   std::vector<BrakingPhase> braking_;

@@ -11,6 +11,7 @@
 #include "data/train_io.hpp"
 #include "dp/section_library.hpp"
 #include "timetable/fleet_pattern.hpp"
+#include "timetable/fleet_problem.hpp"
 
 namespace ecorail::timetable::testing {
 
@@ -33,6 +34,16 @@ inline const PatternTrip& small_pattern() {
     return optimal_split_pattern(small_library(), {30.0, 30.0}, 480.0, o);
   }();
   return pattern;
+}
+
+// A fleet of the small pattern: trains, headway range and span.
+inline FleetProblem small_fleet(int trains, int headway_min_s, int headway_max_s, int span_s) {
+  FleetProblem p;
+  p.trains = trains;
+  p.headway_min_s = headway_min_s;
+  p.headway_max_s = headway_max_s;
+  p.span_s = span_s;
+  return p;
 }
 
 }  // namespace ecorail::timetable::testing

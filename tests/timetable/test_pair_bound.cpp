@@ -14,12 +14,7 @@ namespace ecorail::timetable {
 namespace {
 
 FleetProblem small_problem() {
-  FleetProblem p;
-  p.trains = 4;
-  p.headway_min_s = 80;
-  p.headway_max_s = 140;
-  p.span_s = 330;
-  return p;
+  return testing::small_fleet(4, 80, 140, 330);
 }
 
 double brute_force_used(const FleetModels& models) {
@@ -57,11 +52,7 @@ TEST(PairBound, NeverBelowTheBruteForceOptimumAndTheOptimiserReachesIt) {
 }
 
 TEST(HeadwayOptimiser, SameSeedSameTimetableOnOneAndTwoThreads) {
-  FleetProblem p;
-  p.trains = 10;
-  p.headway_min_s = 80;
-  p.headway_max_s = 200;
-  p.span_s = 9 * 150;
+  const FleetProblem p = testing::small_fleet(10, 80, 200, 9 * 150);
   EnergyModelOptions o;
   o.time_step_s = 0.1;
   const FleetModels models(testing::small_pattern().trip, p, o);

@@ -30,11 +30,7 @@ TEST(PowerProfile, BinsAddUpToTheTripLedgerForEveryStep) {
 }
 
 TEST(PowerBalance, AMillionMovesLeaveExactlyTheTotalsOfAFreshEvaluation) {
-  FleetProblem problem;
-  problem.trains = 12;
-  problem.headway_min_s = 60;
-  problem.headway_max_s = 300;
-  problem.span_s = 11 * 150;
+  const FleetProblem problem = testing::small_fleet(12, 60, 300, 11 * 150);
   EnergyModelOptions o;
   o.time_step_s = 1.0;  // coarse, so a million moves run in seconds; the arithmetic is the same
   const FleetModels models(small_pattern().trip, problem, o);
@@ -59,11 +55,7 @@ TEST(PowerBalance, AMillionMovesLeaveExactlyTheTotalsOfAFreshEvaluation) {
 }
 
 TEST(PowerBalance, UsedNeverExceedsRegenOrTractionInAnyBin) {
-  FleetProblem problem;
-  problem.trains = 6;
-  problem.headway_min_s = 60;
-  problem.headway_max_s = 200;
-  problem.span_s = 5 * 97;
+  const FleetProblem problem = testing::small_fleet(6, 60, 200, 5 * 97);
   EnergyModelOptions o;
   o.time_step_s = 0.1;
   const FleetModels models(small_pattern().trip, problem, o);
@@ -90,11 +82,7 @@ TEST(PowerBalance, WithoutRegenerationTheSubstationSuppliesAllTraction) {
   for (std::size_t i = 0; i < lib.size(); ++i)
     sections.push_back({&lib.route(i), &solves[i].search.run.sim, i + 1 < lib.size() ? 30.0 : 0.0});
   const physics::Trip with(sections, 0.0, 0.95), without(sections, 0.0, 0.0);
-  FleetProblem problem;
-  problem.trains = 4;
-  problem.headway_min_s = 60;
-  problem.headway_max_s = 250;
-  problem.span_s = 600;
+  const FleetProblem problem = testing::small_fleet(4, 60, 250, 600);
   EnergyModelOptions o;
   o.time_step_s = 0.1;
   const std::vector<int> t{0, 200, 400, 600};
@@ -121,11 +109,7 @@ TEST(PowerBalance, OneTrainUsesNothing) {
 }
 
 TEST(PowerBalance, SectionsWithOneSectionIsPowerFlowAndSplittingNeverUsesMore) {
-  FleetProblem problem;
-  problem.trains = 8;
-  problem.headway_min_s = 60;
-  problem.headway_max_s = 200;
-  problem.span_s = 7 * 101;
+  const FleetProblem problem = testing::small_fleet(8, 60, 200, 7 * 101);
   std::vector<int> t;
   for (int k = 0; k < 8; ++k) t.push_back(101 * k);
   EnergyModelOptions flow;
