@@ -22,6 +22,7 @@
 #include "timetable/fleet_models.hpp"
 #include "timetable/fleet_pattern.hpp"
 #include "timetable/headway_optimiser.hpp"
+#include "timetable/pattern_search.hpp"
 
 namespace ecorail::cli {
 
@@ -46,6 +47,7 @@ struct TimetableArgs {
   int restarts = 2;
   long moves = 2000000;
   double anneal_step_s = 1.0;
+  std::string optimise = "headways";
   std::string json, csv, xlsx, diagram, power_plot;
   std::string window = "0:7200";
   bool quiet = false;
@@ -190,6 +192,7 @@ struct FleetSetup {
   timetable::EnergyModelOptions model;
   std::vector<std::string> stops;
   std::vector<double> positions_m;
+  std::unique_ptr<dp::SectionLibrary> library;  // kept for pattern optimisation
   timetable::PatternTrip pattern;
   std::unique_ptr<timetable::FleetModels> models;
 };
@@ -212,7 +215,9 @@ FleetSetup setup(const TimetableArgs& a) {
   if (s.stops.size() < 2) bad("--to", "a station other than --from");
   dp::SectionLibraryOptions lib_options;
   lib_options.engine = engine_options(a.problem);
-  dp::SectionLibrary library(p.train, data::build_routes(p.line, s.stops, p.train), lib_options);
+  s.library = std::make_unique<dp::SectionLibrary>(
+      p.train, data::build_routes(p.line, s.stops, p.train), lib_options);
+  const dp::SectionLibrary& library = *s.library;
   const std::vector<double> dwells(s.stops.size() - 2, a.dwell_s);
   dp::JourneyOptions journey;
   journey.engine = lib_options.engine;
@@ -300,8 +305,34 @@ void run_optimise(const TimetableArgs& a) {
       std::fflush(stderr);
     };
   }
-  const auto result = timetable::optimise_headways(*s.models, o);
-  if (o.progress) std::fprintf(stderr, "\n");
+  if (a.optimise != "headways" && a.optimise != "pattern")
+    bad("--optimise", "headways or pattern; got '" + a.optimise + "'");
+  timetable::HeadwayOptimiserResult result;
+  nlohmann::json pattern_report;
+  if (a.optimise == "pattern") {
+    timetable::PatternSearchOptions po;
+    po.headways = o;
+    const timetable::PatternSearchResult r =
+        timetable::optimise_pattern(*s.library, s.problem, s.model, s.pattern, po);
+    if (o.progress) std::fprintf(stderr, "\n");
+    print_energy(r.headways_only, "headways alone, default pattern");
+    std::printf("  %s\n", r.BriefReport().c_str());
+    const auto& before = r.headways_only.total;
+    const auto& after = r.timetable.evaluation.total;
+    pattern_report = {{"moves_accepted", r.moves_accepted},
+                      {"patterns_evaluated", r.patterns_evaluated},
+                      {"headways_only_substation_energy_kJ", before.substation_J() / 1e3},
+                      {"headways_only_traction_energy_kJ", before.traction_J / 1e3},
+                      {"headways_only_used_regen_kJ", before.used_regen_J / 1e3},
+                      {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
+                      {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
+    s.pattern = r.pattern;
+    s.models = std::make_unique<timetable::FleetModels>(s.pattern.trip, s.problem, s.model);
+    result = r.timetable;
+  } else {
+    result = timetable::optimise_headways(*s.models, o);
+    if (o.progress) std::fprintf(stderr, "\n");
+  }
   print_energy(result.evaluation, "timetable optimise");
   std::printf("  %s\n", result.summary.BriefReport().c_str());
   if (a.full_report) std::printf("%s", result.summary.FullReport().c_str());
@@ -321,6 +352,7 @@ void run_optimise(const TimetableArgs& a) {
                        {"moves", sm.moves},
                        {"wall_s", sm.wall_s},
                        {"brief_report", sm.BriefReport()}};
+  if (!pattern_report.is_null()) energy["pattern_search"] = pattern_report;
   write_fleet_outputs(a, s, result.evaluation, energy);
 }
 
@@ -344,6 +376,9 @@ void add_timetable_command(CLI::App& app) {
       ->capture_default_str();
   op->add_option("--moves", opt_args.moves, "annealing moves per run")->capture_default_str();
   op->add_option("--anneal-step", opt_args.anneal_step_s, "time step of the annealing (s)")
+      ->capture_default_str();
+  op->add_option("--optimise", opt_args.optimise,
+                 "headways (pattern fixed) or pattern (dwells and running times too)")
       ->capture_default_str();
   op->callback([] { run_optimise(opt_args); });
 }
