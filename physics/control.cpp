@@ -40,8 +40,8 @@ std::optional<Control> control_from_name(std::string_view name) {
 }
 
 std::optional<Regime> regime_from_name(std::string_view name) {
-  for (auto r : {Regime::FullTraction, Regime::PartialTraction, Regime::Coast,
-                 Regime::PartialBrake, Regime::FullBrake}) {
+  for (auto r : {Regime::FullTraction, Regime::PartialTraction, Regime::Coast, Regime::PartialBrake,
+                 Regime::FullBrake}) {
     if (regime_name(r) == name) return r;
   }
   return std::nullopt;
