@@ -115,7 +115,8 @@ timetable::EnergyModelOptions model_options(const TimetableArgs& a) {
 std::vector<int> read_departures(const TimetableArgs& a, const timetable::FleetProblem& p) {
   if (!a.headways_file.empty() && !a.departures_file.empty())
     bad("--headways", "either --headways or --departures, not both");
-  std::vector<int> t;
+  if (a.uniform && (!a.headways_file.empty() || !a.departures_file.empty()))
+    bad("--uniform", "--uniform alone, without --headways or --departures");
   const bool headways = !a.headways_file.empty();
   const std::string file = headways ? a.headways_file : a.departures_file;
   if (file.empty()) return timetable::departures_from_headways(timetable::uniform_headways(p));
@@ -134,7 +135,7 @@ std::vector<int> read_departures(const TimetableArgs& a, const timetable::FleetP
                                  data::format_number(v));
     values.push_back(static_cast<int>(v));
   }
-  t = headways ? timetable::departures_from_headways(values) : values;
+  const std::vector<int> t = headways ? timetable::departures_from_headways(values) : values;
   const std::string why = timetable::departures_problem(p, t);
   if (!why.empty())
     throw data::InputError(file, 0, column, "departures that keep the problem: " + why);

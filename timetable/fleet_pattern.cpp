@@ -10,6 +10,18 @@ double FleetPattern::trip_time_s() const {
          std::accumulate(running_times_s.begin(), running_times_s.end(), 0.0);
 }
 
+physics::Trip trip_from_runs(const dp::SectionLibrary& library,
+                             const std::vector<const physics::SimulationResult*>& runs,
+                             const std::vector<double>& dwells_s) {
+  const std::size_t n = library.size();
+  if (runs.size() != n || dwells_s.size() + 1 != n)
+    throw std::invalid_argument("a pattern trip needs one run per section and one dwell per stop");
+  std::vector<physics::TripSection> sections;
+  for (std::size_t i = 0; i < n; ++i)
+    sections.push_back({&library.route(i), runs[i], i + 1 < n ? dwells_s[i] : 0.0});
+  return physics::Trip(sections, 0.0, library.train().regen_efficiency);
+}
+
 PatternTrip optimal_split_pattern(const dp::SectionLibrary& library,
                                   const std::vector<double>& dwells_s, double trip_time_s,
                                   const dp::JourneyOptions& options) {
@@ -22,13 +34,12 @@ PatternTrip optimal_split_pattern(const dp::SectionLibrary& library,
     throw std::runtime_error("the pattern's journey misses a stop or its running time");
   PatternTrip out;
   out.pattern.dwells_s = dwells_s;
-  std::vector<physics::TripSection> sections;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.pattern.running_times_s.push_back(sol.sections[i].run.sim.running_time_s);
-    sections.push_back(
-        {&library.route(i), &sol.sections[i].run.sim, i + 1 < n ? dwells_s[i] : 0.0});
+  std::vector<const physics::SimulationResult*> runs;
+  for (const dp::JourneySection& section : sol.sections) {
+    out.pattern.running_times_s.push_back(section.run.sim.running_time_s);
+    runs.push_back(&section.run.sim);
   }
-  out.trip = physics::Trip(sections, 0.0, library.train().regen_efficiency);
+  out.trip = trip_from_runs(library, runs, dwells_s);
   return out;
 }
 
@@ -38,20 +49,17 @@ PatternTrip pattern_trip(const dp::SectionLibrary& library, const FleetPattern& 
     throw std::invalid_argument("a pattern needs one dwell per stop and one time per section");
   std::vector<dp::SectionTimeSolve> solves;
   solves.reserve(n);
+  PatternTrip out;
+  out.pattern.dwells_s = pattern.dwells_s;
+  std::vector<const physics::SimulationResult*> runs;
   for (std::size_t i = 0; i < n; ++i) {
     solves.push_back(library.solve(i, pattern.running_times_s[i]));
     if (!solves.back().search.converged)
       throw std::runtime_error("section " + std::to_string(i + 1) + " misses its running time");
+    out.pattern.running_times_s.push_back(solves.back().search.run.sim.running_time_s);
+    runs.push_back(&solves.back().search.run.sim);
   }
-  std::vector<physics::TripSection> sections;
-  PatternTrip out;
-  out.pattern.dwells_s = pattern.dwells_s;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.pattern.running_times_s.push_back(solves[i].search.run.sim.running_time_s);
-    sections.push_back(
-        {&library.route(i), &solves[i].search.run.sim, i + 1 < n ? pattern.dwells_s[i] : 0.0});
-  }
-  out.trip = physics::Trip(sections, 0.0, library.train().regen_efficiency);
+  out.trip = trip_from_runs(library, runs, pattern.dwells_s);
   return out;
 }
 

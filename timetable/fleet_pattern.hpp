@@ -32,6 +32,12 @@ PatternTrip optimal_split_pattern(const dp::SectionLibrary& library,
                                   const std::vector<double>& dwells_s, double trip_time_s,
                                   const dp::JourneyOptions& options);
 
+// A pattern's trip from one re-simulated run per section and the dwells between them (the runs
+// are copied into the trip).
+physics::Trip trip_from_runs(const dp::SectionLibrary& library,
+                             const std::vector<const physics::SimulationResult*>& runs,
+                             const std::vector<double>& dwells_s);
+
 // The trip of a pattern whose running times are given (each section solved for its time).
 PatternTrip pattern_trip(const dp::SectionLibrary& library, const FleetPattern& pattern);
 

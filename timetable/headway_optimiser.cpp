@@ -268,8 +268,8 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
   s.start_used_J = to_joules(start_best);
   report("starts", s.start_used_J, NAN);
 
-  // Annealing on a coarser grid (0.1 s, or the model's step if coarser): ten times cheaper
-  // moves; the polish below works on the model's own grid.
+  // Annealing on the coarser grid of anneal_step_s (or the model's step if coarser): a move
+  // touches far fewer bins; the polish below ends on the model's own grid.
   EnergyModelOptions coarse_options = eo;
   coarse_options.time_step_s = std::max(eo.time_step_s, options.anneal_step_s);
   const FleetModels coarse(models.trip(), p, coarse_options);

@@ -33,15 +33,13 @@ class SolveCache {
 // The trip of a pattern from cached solves; nullopt when a section misses its time.
 std::optional<physics::Trip> trip_of(SolveCache& cache, const dp::SectionLibrary& library,
                                      const FleetPattern& pattern) {
-  std::vector<physics::TripSection> sections;
-  const std::size_t n = library.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  std::vector<const physics::SimulationResult*> runs;
+  for (std::size_t i = 0; i < library.size(); ++i) {
     const dp::SectionTimeSolve& s = cache.get(i, pattern.running_times_s[i]);
     if (!s.search.converged) return std::nullopt;
-    sections.push_back(
-        {&library.route(i), &s.search.run.sim, i + 1 < n ? pattern.dwells_s[i] : 0.0});
+    runs.push_back(&s.search.run.sim);
   }
-  return physics::Trip(sections, 0.0, library.train().regen_efficiency);
+  return trip_from_runs(library, runs, pattern.dwells_s);
 }
 
 }  // namespace

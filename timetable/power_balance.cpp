@@ -71,17 +71,19 @@ MicroJoules PowerBalance::recount_used() const {
   return used;
 }
 
+void PowerBalance::accumulate(BinSum& sum, int section, long bin) const {
+  const std::size_t i = index(section, bin);
+  sum.traction += traction_bins_[i];
+  sum.regen += regen_bins_[i];
+  sum.used += std::min(traction_bins_[i], regen_bins_[i]);
+}
+
 std::vector<FleetEnergy> PowerBalance::section_energy() const {
   std::vector<FleetEnergy> out(sections_);
   for (int s = 0; s < sections_; ++s) {
-    MicroJoules t = 0, r = 0, u = 0;
-    for (long b = 0; b < bins_; ++b) {
-      const std::size_t i = index(s, b);
-      t += traction_bins_[i];
-      r += regen_bins_[i];
-      u += std::min(traction_bins_[i], regen_bins_[i]);
-    }
-    out[s] = {to_joules(t), to_joules(r), to_joules(u)};
+    BinSum sum;
+    for (long b = 0; b < bins_; ++b) accumulate(sum, s, b);
+    out[s] = {to_joules(sum.traction), to_joules(sum.regen), to_joules(sum.used)};
   }
   return out;
 }
@@ -116,16 +118,11 @@ PowerBalance::Trace PowerBalance::trace(double from_s, double to_s) const {
   out.start_s = static_cast<double>(b0) * step;
   const double per_bin = kMicroJoulesPerJoule * step;  // uJ per bin -> W
   for (long b = b0; b < b1; ++b) {
-    MicroJoules t = 0, r = 0, u = 0;
-    for (int s = 0; s < sections_; ++s) {
-      const std::size_t i = index(s, b);
-      t += traction_bins_[i];
-      r += regen_bins_[i];
-      u += std::min(traction_bins_[i], regen_bins_[i]);
-    }
-    out.traction_W.push_back(static_cast<double>(t) / per_bin);
-    out.regen_W.push_back(static_cast<double>(r) / per_bin);
-    out.used_W.push_back(static_cast<double>(u) / per_bin);
+    BinSum sum;
+    for (int s = 0; s < sections_; ++s) accumulate(sum, s, b);
+    out.traction_W.push_back(static_cast<double>(sum.traction) / per_bin);
+    out.regen_W.push_back(static_cast<double>(sum.regen) / per_bin);
+    out.used_W.push_back(static_cast<double>(sum.used) / per_bin);
   }
   return out;
 }

@@ -56,6 +56,11 @@ class PowerBalance {
 
  private:
   void add(int train, int departure_s, int sign);
+  // Traction, regenerated and used energy summed over bins of one or several sections.
+  struct BinSum {
+    MicroJoules traction = 0, regen = 0, used = 0;
+  };
+  void accumulate(BinSum& sum, int section, long bin) const;
   std::size_t index(int section, long bin) const {
     return static_cast<std::size_t>(section) * static_cast<std::size_t>(bins_) +
            static_cast<std::size_t>(bin);

@@ -19,6 +19,7 @@ expect_error "--model" timetable evaluate "${small[@]}" --model magic "${outs[@]
 expect_error "--step" timetable evaluate "${small[@]}" --step 0.3 "${outs[@]}"
 expect_error "span_s" timetable optimise --from A6 --to A9 --trains 6 --span 5000 --headway 150:250 --trip-time 480 "${outs[@]}"
 expect_error "flat-out running time" timetable evaluate --from A6 --to A9 --trains 6 --span 1000 --headway 150:250 --trip-time 200 "${outs[@]}"
+expect_error "--uniform" timetable evaluate "${small[@]}" --uniform --headways low.csv "${outs[@]}"
 expect_error "--sections-at" timetable evaluate "${small[@]}" --model sections "${outs[@]}"
 
 # A good run: every output, headways within bounds, the optimum no worse than uniform.

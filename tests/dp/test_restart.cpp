@@ -18,11 +18,7 @@ namespace {
 
 std::vector<physics::Route> routes(const physics::Train& train,
                                    const std::vector<std::string>& stops) {
-  std::vector<physics::Route> out;
-  for (std::size_t i = 0; i + 1 < stops.size(); ++i) {
-    out.push_back(data::build_route(data::default_line(), stops[i], stops[i + 1], train));
-  }
-  return out;
+  return data::build_routes(data::default_line(), stops, train);
 }
 
 // The energy and time of a run from the first trace point at or after position s onwards.

@@ -14,18 +14,13 @@
 #include "output/frontier_io.hpp"
 #include "output/gnuplot.hpp"
 #include "output/speed_plot.hpp"
+#include "temp_dir_test.hpp"
 
 namespace ecorail::output {
 namespace {
 
-class GnuplotTest : public ::testing::Test {
+class GnuplotTest : public ecorail::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    char templ[] = "/tmp/ecorail-gnuplot-test-XXXXXX";
-    ASSERT_NE(mkdtemp(templ), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   // Strings that run a command if gnuplot evaluates them instead of printing them.
   std::vector<std::string> hostile() const {
     const std::string x = (dir_ / "X").string();
@@ -44,7 +39,6 @@ class GnuplotTest : public ::testing::Test {
     std::filesystem::create_directories(p.parent_path());
     return p;
   }
-  std::filesystem::path dir_;
 };
 
 std::string read_file(const std::filesystem::path& p) {

@@ -12,23 +12,17 @@
 #include <stdexcept>
 
 #include "data/atomic_file.hpp"
+#include "temp_dir_test.hpp"
 
 namespace ecorail::data {
 namespace {
 
-class OutputBatchTest : public ::testing::Test {
+class OutputBatchTest : public ecorail::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    char templ[] = "/tmp/ecorail-batch-test-XXXXXX";
-    ASSERT_NE(mkdtemp(templ), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::size_t entries() const {
     return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir_),
                                                   std::filesystem::directory_iterator()));
   }
-  std::filesystem::path dir_;
 };
 
 std::string read_file(const std::filesystem::path& p) {
@@ -107,7 +101,7 @@ TEST_F(OutputBatchTest, DashIsStandardOutputAndLeavesNoTemporary) {
     return n;
   };
   const std::size_t before = tmp_entries();
-  testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStdout();
   {
     OutputBatch batch;
     batch.add("-", writes("to stdout\n"));
@@ -115,7 +109,7 @@ TEST_F(OutputBatchTest, DashIsStandardOutputAndLeavesNoTemporary) {
         "-", [](const std::filesystem::path& tmp) { std::ofstream(tmp) << "produced\n"; });
     batch.commit();
   }
-  EXPECT_EQ(testing::internal::GetCapturedStdout(), "to stdout\nproduced\n");
+  EXPECT_EQ(::testing::internal::GetCapturedStdout(), "to stdout\nproduced\n");
   EXPECT_FALSE(std::filesystem::exists("-"));
   EXPECT_EQ(tmp_entries(), before);
 }
