@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "output/frontier_cache.hpp"
+#include "temp_dir_test.hpp"
 
 namespace ecorail::output {
 namespace {
@@ -24,16 +25,7 @@ dp::Frontier sample() {
   return f;
 }
 
-class FrontierCacheTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    char templ[] = "/tmp/ecorail-cache-test-XXXXXX";
-    ASSERT_NE(mkdtemp(templ), nullptr);
-    dir_ = templ;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::filesystem::path dir_;
-};
+using FrontierCacheTest = ecorail::testing::TempDirTest;
 
 TEST_F(FrontierCacheTest, RoundTripUnderItsKeyOnly) {
   FileFrontierStore store(dir_);
