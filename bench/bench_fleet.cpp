@@ -7,15 +7,19 @@
 // Run: build/bench/bench_fleet --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <map>
 #include <memory>
 
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "power/supply_loader.hpp"
 #include "timetable/fleet_models.hpp"
 #include "timetable/fleet_pattern.hpp"
 #include "timetable/headway_optimiser.hpp"
+#include "timetable/network_balance.hpp"
+#include "timetable/network_evaluation.hpp"
 #include "timetable/pair_bound.hpp"
 
 namespace {
@@ -104,5 +108,51 @@ void BM_PowerFlowOptimisation(benchmark::State& state) {
 BENCHMARK(BM_PowerFlowOptimisation)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
+
+// The network model (docs/power_network.md): a day of 100 trains at 0.1 s (659 961 instants,
+// each a DC load flow with the example supply data/contest/power_supply.toml) evaluated in
+// full on all threads (Arg: thread count), and one incremental move of one train and back
+// (each re-solves the instants of the train's old and new runs, 2 x ~20 900).
+const timetable::FleetModels& network_models() {
+  static const std::unique_ptr<timetable::FleetModels> m = [] {
+    timetable::EnergyModelOptions o;
+    o.model = timetable::EnergyModel::Network;
+    o.time_step_s = timetable::kNetworkTimeStep_s;
+    // Run from the source tree's root (or next to this file's tree).
+    std::filesystem::path file = "data/contest/power_supply.toml";
+    if (!std::filesystem::exists(file))
+      file = std::filesystem::path(__FILE__).parent_path().parent_path() / file;
+    o.power_supply =
+        std::make_shared<const power::PowerSupply>(power::load_power_supply(file.string()));
+    return std::make_unique<timetable::FleetModels>(pattern().trip, timetable::FleetProblem{}, o);
+  }();
+  return *m;
+}
+
+void BM_NetworkDay(benchmark::State& state) {
+  const auto setup = network_models().network_setup(static_cast<int>(state.range(0)));
+  const auto t = uniform();
+  for (auto _ : state) {
+    const auto e = timetable::evaluate_network(setup, t);
+    benchmark::DoNotOptimize(e.substation_J);
+  }
+  state.SetItemsProcessed(state.iterations() * 659961);  // instants
+}
+BENCHMARK(BM_NetworkDay)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_NetworkMove(benchmark::State& state) {
+  const auto setup = network_models().network_setup(1);
+  timetable::NetworkBalance balance(*setup.profile, *setup.supply, 1.0, 100, setup.horizon_s, 2);
+  const auto t = uniform();
+  balance.place_all(t);
+  int k = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(balance.move(k, t[k] + 1));
+    benchmark::DoNotOptimize(balance.move(k, t[k]));
+    k = k % 98 + 1;
+  }
+  state.SetItemsProcessed(2 * state.iterations());  // moves
+}
+BENCHMARK(BM_NetworkMove)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -12,6 +12,7 @@
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
+#include "dp/threads.hpp"
 #include "fitting/calibration.hpp"
 #include "fitting/fit_json.hpp"
 #include "fitting/log_reader.hpp"
@@ -81,6 +82,11 @@ void run_calibrate(const CalibrateArgs& a) {
     throw data::InputError("command line", 0, "--max-iterations", "at least 1 iteration");
   }
   o.max_iterations = a.max_iterations;
+  if (a.threads > dp::kMaxThreads) {
+    throw data::InputError("command line", 0, "--threads",
+                           "at most " + std::to_string(dp::kMaxThreads) +
+                               " threads (the bound on threads); got " + std::to_string(a.threads));
+  }
   o.num_threads = std::max(1, a.threads);
   o.apply_accel_limits = !a.no_accel_limits;
 

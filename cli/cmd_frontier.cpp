@@ -10,6 +10,7 @@
 #include "cli/errors.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
+#include "cli/progress.hpp"
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
@@ -35,6 +36,7 @@ struct FrontierArgs {
   std::string json, csv, plot;
   std::string cache_dir;
   bool no_cache = false;
+  bool quiet = false;
 };
 
 // The cache key of one section's frontier: line and train checksums, section, grid, objective,
@@ -57,7 +59,11 @@ output::LabelledFrontier frontier_for(const Problem& p, const FrontierArgs& a,
                                       const std::string& to, output::FileFrontierStore* cache) {
   const std::string key = cache_key(p, a, from, to);
   if (cache != nullptr) {
-    if (std::optional<dp::Frontier> f = cache->load(key)) return {from, to, std::move(*f)};
+    if (std::optional<dp::Frontier> f = cache->load(key)) {
+      output::LabelledFrontier served{from, to, std::move(*f)};
+      served.from_cache = true;  // said in the table and in the JSON ("from_cache")
+      return served;
+    }
   }
   const physics::Route route = data::build_route(p.line, from, to, p.train);
   const dp::SectionEngine engine(p.train, route, engine_opts);
@@ -121,17 +127,24 @@ void run_frontier(const FrontierArgs& a) {
   // (if any) is reported after the loop, since exceptions may not leave an OpenMP region.
   std::vector<output::LabelledFrontier> frontiers(sections.size());
   std::exception_ptr failure;
-  const int n = static_cast<int>(sections.size());
+  {
+    // The progress line is cleared when this block ends, before the table.
+    Progress progress("ecorail frontier", a.quiet);
+    // One section: progress by point; several side by side: by section.
+    if (!a.all) options.progress = progress.callback();
+    int sections_done = 0;
+    const int n = static_cast<int>(sections.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) {
-    const auto& [from, to] = sections[i];
-    try {
-      frontiers[i] = frontier_for(p, a, engine_opts, options, from, to, cache);
+    for (int i = 0; i < n; ++i) {
+      const auto& [from, to] = sections[i];
+      try {
+        frontiers[i] = frontier_for(p, a, engine_opts, options, from, to, cache);
 #pragma omp critical(frontier_progress)
-      if (n > 1) std::fprintf(stderr, "frontier %s -> %s done\n", from.c_str(), to.c_str());
-    } catch (...) {
+        if (n > 1) progress.update("section", ++sections_done, n);
+      } catch (...) {
 #pragma omp critical(frontier_failure)
-      if (!failure) failure = std::current_exception();
+        if (!failure) failure = std::current_exception();
+      }
     }
   }
   if (failure) std::rethrow_exception(failure);
@@ -147,6 +160,7 @@ void run_frontier(const FrontierArgs& a) {
                 lf.to.c_str(), f.min_time_s, f.points.size(),
                 units::J_to_kJ(f.points.front().cost_J), units::J_to_kJ(f.points.back().cost_J),
                 f.monotone ? "yes" : "NO", f.convex ? "yes" : "NO", f.wobbles.size());
+    if (lf.from_cache) std::printf("  note: served from the cache (computed by an earlier run)\n");
     for (const auto& w : f.wobbles) {
       std::printf("  note: %s at %.1f s by %.3f kJ (grid effect; see docs/frontiers.md)\n",
                   w.kind.c_str(), w.time_s, w.size_J / 1000.0);
@@ -159,6 +173,12 @@ void run_frontier(const FrontierArgs& a) {
     for (const auto& lf : frontiers) j.push_back(output::frontier_json(lf));
     nlohmann::json doc = a.all ? nlohmann::json{{"frontiers", j}} : j[0];
     doc["grid"] = {{"ds_m", a.problem.ds_m}, {"dv_kmh", a.problem.dv_kmh}};
+    doc["provenance"] = run_provenance(p, a.problem,
+                                       {{"tmin_s", a.t_min},
+                                        {"tmax_s", a.t_max},
+                                        {"step_s", a.step},
+                                        {"all", a.all},
+                                        {"cache", !a.no_cache}});
     batch.add(a.json, [&](std::ostream& o) { output::write_json(o, doc); });
   }
   if (!a.csv.empty())
@@ -189,6 +209,7 @@ void add_frontier_command(CLI::App& app) {
   cmd->add_option("--cache-dir", args->cache_dir,
                   "cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
   cmd->add_flag("--no-cache", args->no_cache, "neither read nor write the cache");
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->callback([args] { run_frontier(*args); });
 }
 

@@ -8,10 +8,12 @@
 #include "cli/journey_solve.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
+#include "cli/progress.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
 #include "dp/journey.hpp"
 #include "dp/section_solve.hpp"
+#include "dp/text_format.hpp"
 #include "output/run_json.hpp"
 #include "physics/trip.hpp"
 #include "physics/units.hpp"
@@ -28,14 +30,15 @@ struct SolveArgs {
   bool full_report = false;
 };
 
-void print_regimes(const std::vector<dp::RegimeSpan>& spans) {
-  std::printf("  %-17s %9s %9s %9s %9s %8s %8s\n", "regime", "from_m", "to_m", "v0_kmh", "v1_kmh",
-              "t0_s", "t1_s");
+// A speed hold is named as one ("speed_hold"), so the table reads as advice.
+void print_regimes(std::FILE* out, const std::vector<dp::RegimeSpan>& spans) {
+  std::fprintf(out, "  %-17s %9s %9s %9s %9s %8s %8s\n", "regime", "from_m", "to_m", "v0_kmh",
+               "v1_kmh", "t0_s", "t1_s");
   for (const auto& r : spans) {
-    std::printf("  %-17s %9.2f %9.2f %9.2f %9.2f %8.2f %8.2f\n",
-                std::string(physics::regime_name(r.regime)).c_str(), r.start_m, r.end_m,
-                units::ms_to_kmh(r.start_speed_ms), units::ms_to_kmh(r.end_speed_ms),
-                r.start_time_s, r.end_time_s);
+    std::fprintf(out, "  %-17s %9.2f %9.2f %9.2f %9.2f %8.2f %8.2f\n",
+                 std::string(dp::span_name(r)).c_str(), r.start_m, r.end_m,
+                 units::ms_to_kmh(r.start_speed_ms), units::ms_to_kmh(r.end_speed_ms),
+                 r.start_time_s, r.end_time_s);
   }
 }
 
@@ -50,6 +53,9 @@ output::SummaryRows summary_rows(const dp::SectionSolveSummary& s) {
           {"stop_error_m", s.stop_error_m},
           {"max_overspeed_kmh", s.max_overspeed_kmh},
           {"lambda_kJ_per_s", s.lambda_J_per_s / 1000.0},
+          {"min_regime_m", s.min_regime.min_length_m},
+          {"min_regime_s", s.min_regime.min_duration_s},
+          {"min_regime_cost_kJ", s.min_regime_cost_kJ},
           {"grid_ds_m", s.grid.ds_m},
           {"grid_dv_kmh", s.grid.dv_kmh}};
 }
@@ -70,18 +76,31 @@ void run_solve(const SolveArgs& a) {
   }
   dp::SectionSolveOptions options;
   options.engine = engine_options(a.problem);
+  options.min_regime = a.journey.min_regime;
   require_valid(options);
   const Problem p = load_problem(a.problem);
-  const dp::SectionSolution solution = dp::solve_section(p.train, p.route, a.time_s, options);
+  std::FILE* out = report_stream(a.outputs);
+  dp::SectionSolution solution;
+  {
+    Progress progress("ecorail solve", a.journey.quiet);
+    progress.update("building the grid", 0, 0);
+    options.search.progress = progress.callback();
+    solution = dp::solve_section(p.train, p.route, a.time_s, options);
+  }
   const auto& s = solution.summary;
-  std::cout << (a.full_report ? s.FullReport() : s.BriefReport());
+  // Warnings go with either report (the full one lists them itself).
+  std::fputs((a.full_report ? s.FullReport() : s.BriefReport() + warnings_text(s.warnings)).c_str(),
+             out);
+  const std::string cap_note = speed_cap_note(p.line, {s.from, s.to}, p.train);
+  if (!cap_note.empty()) std::fprintf(out, "  note: %s\n", cap_note.c_str());
   if (!s.IsSolutionUsable()) {
-    for (const auto& w : s.warnings) std::cout << "  warning: " << w << "\n";
+    std::fflush(out);
     throw std::runtime_error(
         "the run misses its stop or its running time (see the warnings); "
         "no output was written");
   }
-  print_regimes(solution.regimes);
+  print_regimes(out, solution.regimes);
+  std::fflush(out);
   // The per-second table is read from the run laid out as a trip.
   const output::Timeline timeline = output::trip_timeline(
       physics::Trip({{&p.route, &solution.run.sim, 0.0}}, 0.0, p.train.regen_efficiency));
@@ -89,7 +108,11 @@ void run_solve(const SolveArgs& a) {
   std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
   nlohmann::json report = output::section_solution_json(solution);
-  report["provenance"] = run_provenance(p, a.problem, {{"time_s", a.time_s}});
+  report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
+  report["provenance"] = run_provenance(p, a.problem,
+                                        {{"time_s", a.time_s},
+                                         {"min_regime_m", options.min_regime.min_length_m},
+                                         {"min_regime_s", options.min_regime.min_duration_s}});
   write_outputs(a.outputs, report, timeline, title, summary_rows(s));
 }
 
@@ -101,6 +124,13 @@ void add_solve_command(CLI::App& app) {
   add_problem_options(cmd, args->problem);
   cmd->add_option("--time", args->time_s, "running time in s (dwells excluded)")->required();
   cmd->add_flag("--full-report", args->full_report, "print the full solver report");
+  cmd->add_option("--min-regime-m", args->journey.min_regime.min_length_m,
+                  "merge control phases shorter than this (m) into the phase before them, "
+                  "re-simulate and trim back to the running time; the report states the cost "
+                  "(docs/journeys.md)");
+  cmd->add_option("--min-regime-s", args->journey.min_regime.min_duration_s,
+                  "the same for phases lasting less than this (s)");
+  cmd->add_flag("--quiet", args->journey.quiet, "no progress line on stderr");
   cmd->add_option("--dwell", args->journey.dwells,
                   "dwell at intermediate stops: STATION=SECONDS, or SECONDS for every stop "
                   "not named (journeys only)");

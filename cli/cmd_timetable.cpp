@@ -13,16 +13,19 @@
 #include "cli/commands.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
+#include "cli/service_options.hpp"
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
 #include "dp/section_library.hpp"
 #include "output/fleet_outputs.hpp"
+#include "power/supply_loader.hpp"
 #include "timetable/fleet_models.hpp"
 #include "timetable/fleet_pattern.hpp"
 #include "timetable/headway_optimiser.hpp"
 #include "timetable/pattern_search.hpp"
+#include "timetable/windowed_classes.hpp"
 
 namespace ecorail::cli {
 
@@ -48,10 +51,20 @@ struct TimetableArgs {
   long moves = 2000000;
   double anneal_step_s = 1.0;
   std::string optimise = "headways";
+  bool per_train_patterns = false;
+  bool optimise_given = false;  // --optimise on the command line (not its default)
   std::string json, csv, xlsx, diagram, power_plot;
   std::string window = "0:7200";
+  std::vector<std::string> peaks;             // --peak FROM:TO, any number
+  std::string peak_headway, offpeak_headway;  // "" : 120:150 and 300:660 with --peak
+  std::string nearest;                        // evaluate --nearest PEAK:OFFPEAK
   bool quiet = false;
   bool full_report = false;
+  ServiceArgs service;  // --separation, --profiles, ... (cli/service_options.hpp)
+  // Network model (docs/power_network.md).
+  std::string power_supply, voltage_plot;
+  double voltage_at_s = 3600.0;
+  CLI::Option* step_option = nullptr;  // whether --step was given (the network's default differs)
 };
 
 [[noreturn]] void bad(const std::string& flag, const std::string& expected) {
@@ -83,8 +96,29 @@ timetable::FleetProblem fleet_problem(const TimetableArgs& a) {
   p.headway_max_s = whole_seconds(hmax, "--headway");
   p.trip_time_s = a.trip_time_s;
   std::tie(p.dwell_min_s, p.dwell_max_s) = parse_range(a.dwell_range, "--dwell-range");
+  if (a.peaks.empty() && !(a.peak_headway.empty() && a.offpeak_headway.empty()))
+    bad("--peak-headway/--offpeak-headway", "at least one --peak FROM:TO window with them");
+  for (const std::string& w : a.peaks) {
+    const auto [from, to] = parse_range(w, "--peak");
+    if (from == to) bad("--peak", "a window FROM:TO with FROM < TO; got '" + w + "'");
+    p.peak_windows.push_back({whole_seconds(from, "--peak"), whole_seconds(to, "--peak")});
+  }
+  if (p.windowed()) {
+    // With peak windows, --headway gives way to the two classes.
+    const auto [pmin, pmax] =
+        parse_range(a.peak_headway.empty() ? "120:150" : a.peak_headway, "--peak-headway");
+    p.peak_headway_min_s = whole_seconds(pmin, "--peak-headway");
+    p.peak_headway_max_s = whole_seconds(pmax, "--peak-headway");
+    const auto [omin, omax] =
+        parse_range(a.offpeak_headway.empty() ? "300:660" : a.offpeak_headway, "--offpeak-headway");
+    p.headway_min_s = whole_seconds(omin, "--offpeak-headway");
+    p.headway_max_s = whole_seconds(omax, "--offpeak-headway");
+  }
   std::string why;
-  if (!p.IsValid(&why)) bad("--trains/--span/--headway/--trip-time/--dwell-range", why);
+  if (!p.IsValid(&why))
+    bad(p.windowed() ? "--trains/--span/--peak/--peak-headway/--offpeak-headway"
+                     : "--trains/--span/--headway/--trip-time/--dwell-range",
+        why);
   if (!(a.dwell_s >= p.dwell_min_s && a.dwell_s <= p.dwell_max_s))
     bad("--dwell", "a dwell within --dwell-range " + a.dwell_range + " s; got " +
                        data::format_number(a.dwell_s));
@@ -94,13 +128,23 @@ timetable::FleetProblem fleet_problem(const TimetableArgs& a) {
 timetable::EnergyModelOptions model_options(const TimetableArgs& a) {
   timetable::EnergyModelOptions o;
   const auto model = timetable::model_from_name(a.model);
-  if (!model) bad("--model", "power-flow, overlap or sections; got '" + a.model + "'");
+  if (!model) bad("--model", "power-flow, overlap, sections or network; got '" + a.model + "'");
   o.model = *model;
   const auto variant = timetable::overlap_variant_from_name(a.overlap);
   if (!variant) bad("--overlap", "ahead or either; got '" + a.overlap + "'");
   o.overlap = *variant;
   o.time_step_s = a.step_s;
   o.section_boundaries_m = a.sections_at_m;
+  if (o.model == timetable::EnergyModel::Network) {
+    if (a.power_supply.empty())
+      bad("--power-supply", "a power-supply file (TOML) for --model network");
+    if (a.step_option == nullptr || a.step_option->count() == 0)
+      o.time_step_s = timetable::kNetworkTimeStep_s;
+    o.power_supply =
+        std::make_shared<const power::PowerSupply>(power::load_power_supply(a.power_supply));
+  } else if (!a.power_supply.empty()) {
+    bad("--power-supply", "--model network (the other models have no supply network)");
+  }
   if (o.model == timetable::EnergyModel::Sections && o.section_boundaries_m.empty())
     bad("--sections-at",
         "at least one supply-section boundary (m from the first station) for "
@@ -119,6 +163,13 @@ std::vector<int> read_departures(const TimetableArgs& a, const timetable::FleetP
     bad("--uniform", "--uniform alone, without --headways or --departures");
   const bool headways = !a.headways_file.empty();
   const std::string file = headways ? a.headways_file : a.departures_file;
+  if (!a.nearest.empty()) {
+    if (!file.empty() || a.uniform)
+      bad("--nearest", "--nearest alone, without --headways, --departures or --uniform");
+    if (!p.windowed()) bad("--nearest", "peak windows (--peak FROM:TO)");
+    const auto [peak, off] = parse_range(a.nearest, "--nearest");
+    return timetable::departures_from_headways(timetable::windowed_nearest_headways(p, peak, off));
+  }
   if (file.empty()) return timetable::departures_from_headways(timetable::uniform_headways(p));
   const auto table = data::CsvTable::read(file);
   const std::string column = headways ? "headway_s" : "departure_s";
@@ -128,7 +179,7 @@ std::vector<int> read_departures(const TimetableArgs& a, const timetable::FleetP
     const double v = table.number(row, c);
     if (v != std::floor(v) || v < 0 || v > 1e9)
       throw data::InputError(file, row.row, column, "a whole number of seconds >= 0");
-    if (headways && (v < p.headway_min_s || v > p.headway_max_s))
+    if (headways && !p.windowed() && (v < p.headway_min_s || v > p.headway_max_s))
       throw data::InputError(file, row.row, column,
                              "a headway in [" + std::to_string(p.headway_min_s) + ", " +
                                  std::to_string(p.headway_max_s) + "] s; got " +
@@ -155,8 +206,10 @@ void add_fleet_options(CLI::App* cmd, TimetableArgs& a) {
   cmd->add_option("--model", a.model, "power-flow, overlap or sections")->capture_default_str();
   cmd->add_option("--overlap", a.overlap, "overlap model: ahead (contest) or either neighbour")
       ->capture_default_str();
-  cmd->add_option("--step", a.step_s, "time step of the power balance (s, divides 1 s)")
-      ->capture_default_str();
+  a.step_option =
+      cmd->add_option("--step", a.step_s,
+                      "time step of the power balance (s, divides 1 s; network: 0.1 by default)")
+          ->capture_default_str();
   cmd->add_option("--sections-at", a.sections_at_m,
                   "supply-section boundaries, m from the first station (sections model)")
       ->delimiter(',');
@@ -164,14 +217,40 @@ void add_fleet_options(CLI::App* cmd, TimetableArgs& a) {
   cmd->add_option("--csv", a.csv, "timetable: train, station, arrival, departure (CSV)");
   cmd->add_option("--xlsx", a.xlsx, "timetable and energy (XLSX)");
   cmd->add_option("--diagram", a.diagram, "train diagram (.svg or .png)");
-  cmd->add_option("--power-plot", a.power_plot, "power over --window (.svg or .png)");
+  cmd->add_option("--power-plot", a.power_plot,
+                  "power over --window (.svg or .png; network: each substation's)");
+  cmd->add_option("--power-supply", a.power_supply,
+                  "the line's traction power supply (TOML) for --model network");
+  cmd->add_option("--voltage-plot", a.voltage_plot,
+                  "network: the voltage along the line at --voltage-at (.svg or .png)");
+  cmd->add_option("--voltage-at", a.voltage_at_s, "network: clock time (s) of --voltage-plot")
+      ->capture_default_str();
   cmd->add_option("--window", a.window, "clock window FROM:TO (s) of the plots")
       ->capture_default_str();
+  cmd->add_option("--peak", a.peaks,
+                  "peak window FROM:TO (s on the timetable clock), repeatable; headways "
+                  "overlapping one are peak headways");
+  cmd->add_option("--peak-headway", a.peak_headway, "peak headway range MIN:MAX (default 120:150)");
+  cmd->add_option("--offpeak-headway", a.offpeak_headway,
+                  "off-peak headway range MIN:MAX with --peak (default 300:660)");
   cmd->add_flag("--quiet", a.quiet, "no progress on stderr");
   cmd->add_flag("--full-report", a.full_report, "print the solver's full report");
+  add_service_options(cmd, a.service);
 }
 
 void print_energy(const timetable::FleetEvaluation& ev, const char* what) {
+  if (ev.network) {
+    const timetable::NetworkEvaluation& n = *ev.network;
+    std::printf(
+        "%s (network, step %s s): substations %.1f kJ + used regen %.1f kJ = traction input "
+        "%.1f kJ + auxiliaries %.1f kJ + line losses %.1f kJ; regen curtailed %.1f kJ of %.1f "
+        "kJ, traction curtailed %.1f kJ; train voltage %.1f to %.1f V\n",
+        what, data::format_number(ev.time_step_s).c_str(), n.substation_J / 1e3,
+        n.used_regen_J / 1e3, n.traction_input_J / 1e3, n.auxiliary_J / 1e3, n.line_losses_J / 1e3,
+        n.curtailed_regen_J / 1e3, n.regen_J / 1e3, n.curtailed_traction_J / 1e3,
+        n.min_train_voltage_V, n.max_train_voltage_V);
+    return;
+  }
   std::printf(
       "%s (%s%s%s): substation %.1f kJ = traction %.1f kJ - used regen %.1f kJ (of %.1f kJ "
       "regenerated, %.2f %%)\n",
@@ -195,6 +274,9 @@ struct FleetSetup {
   std::vector<double> positions_m;
   std::unique_ptr<dp::SectionLibrary> library;  // kept for pattern optimisation
   timetable::PatternTrip pattern;
+  // Per-train patterns (optimise --per-train-patterns): train k's pattern and trip.
+  std::vector<timetable::FleetPattern> per_train_patterns;
+  std::vector<physics::Trip> per_train_trips;
   std::unique_ptr<timetable::FleetModels> models;
 };
 
@@ -206,10 +288,15 @@ FleetSetup setup(const TimetableArgs& a) {
                         {"--csv", a.csv, false},
                         {"--xlsx", a.xlsx, false},
                         {"--diagram", a.diagram, true},
-                        {"--power-plot", a.power_plot, true}});
+                        {"--power-plot", a.power_plot, true},
+                        {"--voltage-plot", a.voltage_plot, true}});
+  check_service_args(a.service);
+  if (!a.voltage_plot.empty() && s.model.model != timetable::EnergyModel::Network)
+    bad("--voltage-plot", "--model network (only the network model has line voltages)");
   ProblemOptions whole = a.problem;
   whole.from.clear();
   const Problem p = load_problem(whole);
+  s.model.traction_efficiency = p.train.traction_efficiency;
   const std::string from = a.problem.from.empty() ? p.line.stations.front().name : a.problem.from;
   const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;
   s.stops = data::stops_between(p.line, from, to);
@@ -239,13 +326,31 @@ FleetSetup setup(const TimetableArgs& a) {
 
 void write_fleet_outputs(const TimetableArgs& a, const FleetSetup& s,
                          const timetable::FleetEvaluation& ev, nlohmann::json energy) {
-  output::FleetTimetable tt{s.stops, s.positions_m, ev.departures_s, s.pattern.trip};
+  output::FleetTimetable tt{s.stops,        s.positions_m,          ev.departures_s,
+                            s.pattern.trip, s.problem.peak_windows, s.per_train_trips};
   energy["pattern"] = {{"dwells_s", s.pattern.pattern.dwells_s},
                        {"running_times_s", s.pattern.pattern.running_times_s},
                        {"trip_time_s", s.pattern.pattern.trip_time_s()}};
+  if (!s.per_train_patterns.empty()) {
+    nlohmann::json patterns = nlohmann::json::array();
+    for (std::size_t k = 0; k < s.per_train_patterns.size(); ++k) {
+      const timetable::FleetPattern& p = s.per_train_patterns[k];
+      patterns.push_back({{"train", k + 1},
+                          {"dwells_s", p.dwells_s},
+                          {"running_times_s", p.running_times_s},
+                          {"trip_time_s", p.trip_time_s()}});
+    }
+    energy["patterns_per_train"] = patterns;
+  }
   energy["stations"] = s.stops;
+  if (ev.network) output::add_network_json(energy, *ev.network);
   const auto [w0, w1] = parse_range(a.window, "--window");
   data::OutputBatch batch;
+  // The separation check first: it adds to the energy JSON (the batch writes on add).
+  if (a.service.wanted() && !s.per_train_patterns.empty())
+    bad("--separation", "one pattern for every train (not --per-train-patterns)");
+  const auto service_run =
+      run_service_check(a.service, *s.library, s.pattern.pattern, ev.departures_s, energy, batch);
   if (!a.json.empty()) batch.add(a.json, [&](std::ostream& o) { o << energy.dump(2) << "\n"; });
   if (!a.csv.empty())
     batch.add(a.csv, [&](std::ostream& o) { output::write_timetable_csv(o, tt); });
@@ -260,10 +365,35 @@ void write_fleet_outputs(const TimetableArgs& a, const FleetSetup& s,
                                   "Train diagram, " + std::to_string(ev.departures_s.size()) +
                                       " trains (" + model + " model)");
     });
-  if (!a.power_plot.empty()) {
+  if (!a.voltage_plot.empty()) {
+    std::vector<int> ids;
+    const auto flow =
+        timetable::load_flow_at(s.models->network_setup(), ev.departures_s, a.voltage_at_s, &ids);
+    batch.add_produced(a.voltage_plot, [&, flow, ids](const std::filesystem::path& f) {
+      output::write_voltage_plot(f, *output::plot_format_for(a.voltage_plot), flow,
+                                 *s.model.power_supply, ids,
+                                 "Line voltage at " + output::clock_text(a.voltage_at_s) + " (" +
+                                     data::format_number(a.voltage_at_s) + " s)");
+    });
+  }
+  if (!a.power_plot.empty() && ev.network) {
+    const auto trace =
+        timetable::substation_trace(s.models->network_setup(), ev.departures_s, w0, w1);
+    batch.add_produced(a.power_plot, [&, trace](const std::filesystem::path& f) {
+      output::write_substation_plot(f, *output::plot_format_for(a.power_plot), trace,
+                                    "Substation power (network model)");
+    });
+  } else if (!a.power_plot.empty()) {
     if (ev.model == timetable::EnergyModel::Overlap)
       bad("--power-plot", "a power-flow or sections model (the overlap model has no power trace)");
-    auto balance = s.models->make_balance();
+    // Per-train patterns: each train's own profile (kept alive here while the trace is made).
+    std::vector<std::unique_ptr<timetable::PowerProfile>> own;
+    std::vector<const timetable::PowerProfile*> profiles;
+    for (const physics::Trip& trip : s.per_train_trips) {
+      own.push_back(timetable::make_profile(trip, s.model));
+      profiles.push_back(own.back().get());
+    }
+    auto balance = profiles.empty() ? s.models->make_balance() : s.models->make_balance(profiles);
     balance->place_all(ev.departures_s);
     const auto trace = balance->trace(w0, w1);
     batch.add_produced(a.power_plot, [&](const std::filesystem::path& f) {
@@ -281,10 +411,35 @@ void run_evaluate(const TimetableArgs& a) {
   const timetable::FleetEvaluation ev = s.models->evaluate(departures);
   print_energy(ev, "timetable evaluate");
   nlohmann::json energy = output::fleet_energy_json(ev, s.problem);
+  if (ev.network) {
+    // The same day with every train burning its regenerated energy: what reuse saves.
+    const auto off = timetable::evaluate_network(s.models->network_setup(), departures, false);
+    energy["substation_energy_without_regen_kJ"] = off.substation_J / 1e3;
+    energy["regen_saving_kJ"] = (off.substation_J - ev.network->substation_J) / 1e3;
+    std::printf(
+        "  without regeneration the substations would supply %.1f kJ: reuse saves %.1f kJ\n",
+        off.substation_J / 1e3, (off.substation_J - ev.network->substation_J) / 1e3);
+    if (ev.network->unsolved_instants > 0)
+      throw std::runtime_error("the load flow found no solution at " +
+                               std::to_string(ev.network->unsolved_instants) +
+                               " instants; nothing written");
+  }
   write_fleet_outputs(a, s, ev, energy);
 }
 
-void run_optimise(const TimetableArgs& a) {
+void run_optimise(const TimetableArgs& given) {
+  TimetableArgs a = given;
+  if (a.per_train_patterns) {
+    // Per-train patterns are a pattern optimisation: the flag implies --optimise pattern.
+    if (a.optimise_given && a.optimise != "pattern")
+      bad("--per-train-patterns", "--optimise pattern (per-train patterns re-time each train)");
+    if (a.model != "power-flow" && a.model != "sections")
+      bad("--per-train-patterns",
+          "--model power-flow or sections (the per-train search prices one train's pattern "
+          "against the fleet's power balance); got '" +
+              a.model + "'");
+    a.optimise = "pattern";
+  }
   FleetSetup s = setup(a);
   timetable::HeadwayOptimiserOptions o;
   o.seed = a.seed;
@@ -308,11 +463,24 @@ void run_optimise(const TimetableArgs& a) {
   }
   if (a.optimise != "headways" && a.optimise != "pattern")
     bad("--optimise", "headways or pattern; got '" + a.optimise + "'");
+  if (a.optimise == "pattern" && s.model.model == timetable::EnergyModel::Network)
+    bad("--optimise", "headways with --model network (pattern search on the network is not built)");
   timetable::HeadwayOptimiserResult result;
   nlohmann::json pattern_report;
   if (a.optimise == "pattern") {
     timetable::PatternSearchOptions po;
     po.headways = o;
+    po.per_train_patterns = a.per_train_patterns;
+    po.time_limit_s = a.time_limit_s;
+    po.threads = a.problem.threads;
+    if (o.progress) {
+      po.progress = [](const timetable::PatternProgress& p) {
+        std::fprintf(stderr, "\r  %-26s %d moves of %d priced, substation %.1f kJ, %.1f s   ",
+                     (p.stage + " moves").c_str(), p.moves_accepted, p.patterns_evaluated,
+                     p.substation_J / 1e3, p.elapsed_s);
+        std::fflush(stderr);
+      };
+    }
     const timetable::PatternSearchResult r =
         timetable::optimise_pattern(*s.library, s.problem, s.model, s.pattern, po);
     if (o.progress) std::fprintf(stderr, "\n");
@@ -327,6 +495,21 @@ void run_optimise(const TimetableArgs& a) {
                       {"headways_only_used_regen_kJ", before.used_regen_J / 1e3},
                       {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
                       {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
+    if (!r.per_train.empty()) {
+      const auto& common = r.common_pattern.total;
+      pattern_report["per_train_patterns"] = true;
+      pattern_report["per_train_moves_accepted"] = r.per_train_moves_accepted;
+      pattern_report["per_train_candidates_priced"] = r.per_train_candidates;
+      pattern_report["common_pattern_substation_energy_kJ"] = common.substation_J() / 1e3;
+      pattern_report["common_pattern_traction_energy_kJ"] = common.traction_J / 1e3;
+      pattern_report["per_train_saving_kJ"] = (common.substation_J() - after.substation_J()) / 1e3;
+      pattern_report["per_train_traction_cost_kJ"] = (after.traction_J - common.traction_J) / 1e3;
+      pattern_report["per_train_stop"] = r.time_limit_reached   ? "time limit"
+                                         : r.move_limit_reached ? "move limit"
+                                                                : "local optimum";
+      s.per_train_patterns = r.per_train;
+      s.per_train_trips = r.per_train_trips;
+    }
     s.pattern = r.pattern;
     s.models = std::make_unique<timetable::FleetModels>(s.pattern.trip, s.problem, s.model);
     result = r.timetable;
@@ -368,6 +551,9 @@ void add_timetable_command(CLI::App& app) {
   ev->add_option("--headways", eval_args.headways_file, "CSV with a column headway_s");
   ev->add_option("--departures", eval_args.departures_file, "CSV with a column departure_s");
   ev->add_flag("--uniform", eval_args.uniform, "uniform headways (the default)");
+  ev->add_option("--nearest", eval_args.nearest,
+                 "with --peak: the timetable nearest (least squares) to class headways "
+                 "PEAK:OFFPEAK (s), e.g. 149:331.5");
   ev->callback([] { run_evaluate(eval_args); });
   auto* op = cmd->add_subcommand("optimise", "headways that minimise the substation energy");
   add_fleet_options(op, opt_args);
@@ -381,7 +567,13 @@ void add_timetable_command(CLI::App& app) {
   op->add_option("--optimise", opt_args.optimise,
                  "headways (pattern fixed) or pattern (dwells and running times too)")
       ->capture_default_str();
-  op->callback([] { run_optimise(opt_args); });
+  op->add_flag("--per-train-patterns", opt_args.per_train_patterns,
+               "each train its own dwells and running times (implies --optimise pattern; "
+               "power-flow and sections models)");
+  op->callback([op] {
+    opt_args.optimise_given = op->get_option("--optimise")->count() > 0;
+    run_optimise(opt_args);
+  });
 }
 
 }  // namespace ecorail::cli

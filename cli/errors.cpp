@@ -6,6 +6,7 @@
 
 #include "data/input_error.hpp"
 #include "dp/journey_plan.hpp"
+#include "dp/resource_estimate.hpp"
 #include "dp/time_target.hpp"
 #include "policy/advisor.hpp"
 #include "policy/ladder.hpp"
@@ -63,6 +64,8 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
     return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
   } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short
     return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
+  } catch (const dp::ResourceLimitError& e) {  // a grid too fine for this machine
+    return fail(2, data::InputError("command line", 0, "--ds/--dv", e.what()).what());
   } catch (const dp::DwellError& e) {
     return fail(2, data::InputError("command line", 0, "--dwell", e.what()).what());
   } catch (const policy::PolicyFormatError& e) {

@@ -7,10 +7,13 @@
 #include <stdexcept>
 
 #include "cli/errors.hpp"
+#include "cli/progress.hpp"
+#include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
 #include "dp/journey.hpp"
 #include "dp/journey_plan.hpp"
+#include "dp/text_format.hpp"
 #include "output/journey_json.hpp"
 #include "physics/units.hpp"
 
@@ -30,6 +33,39 @@ double parse_seconds(const std::string& text, const std::string& value) {
 }
 
 }  // namespace
+
+std::FILE* report_stream(const OutputOptions& o) {
+  for (const std::string* path : {&o.json, &o.csv, &o.xlsx, &o.plot}) {
+    if (!path->empty() && data::is_stdout_path(*path)) return stderr;
+  }
+  return stdout;
+}
+
+std::string speed_cap_note(const data::Line& line, const std::vector<std::string>& stops,
+                           const physics::Train& train) {
+  const data::Station* a = line.find_station(stops.front());
+  const data::Station* b = line.find_station(stops.back());
+  if (a == nullptr || b == nullptr) return "";
+  const double lo = std::min(a->km_post_m, b->km_post_m), hi = std::max(a->km_post_m, b->km_post_m);
+  const double vmax_kmh = units::ms_to_kmh(train.max_speed_ms);
+  double highest_kmh = 0.0;
+  for (const auto& r : line.limits) {
+    const double r_lo = std::min(r.start_km_post_m, r.end_km_post_m);
+    const double r_hi = std::max(r.start_km_post_m, r.end_km_post_m);
+    if (r_hi > lo && r_lo < hi && r.value > vmax_kmh + 1e-9)
+      highest_kmh = std::max(highest_kmh, r.value);
+  }
+  if (highest_kmh == 0.0) return "";
+  return dp::format_text(
+      "line limits up to %.1f km/h are above the train's maximum speed and capped at %.1f km/h",
+      highest_kmh, vmax_kmh);
+}
+
+std::string warnings_text(const std::vector<std::string>& warnings) {
+  std::string text;
+  for (const auto& w : warnings) text += "  warning: " + w + "\n";
+  return text;
+}
 
 std::vector<double> parse_dwells(const std::vector<std::string>& values,
                                  const std::vector<std::string>& stops) {
@@ -54,6 +90,7 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   options.split = dp::split_from_name(args.split).value_or(dp::Split::Optimal);
   options.measure_marginals =
       args.marginals == "on" || (args.marginals == "auto" && stops.size() - 1 <= 4);
+  options.min_regime = args.min_regime;
   require_valid(options);
   ProblemOptions whole = problem;
   whole.from.clear();  // load line and train only; the routes are built per section
@@ -61,30 +98,49 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   const std::vector<physics::Route> routes = data::build_routes(p.line, stops, p.train);
   // Errors (a time below the minimum, a proportional share too short) are mapped in one place,
   // cli/errors.cpp.
-  const dp::JourneySolution sol = dp::solve_journey(p.train, routes, dwells, time_s, options);
+  dp::JourneySolution sol;
+  {
+    Progress progress("ecorail solve", args.quiet);
+    progress.update("building the grids", 0, 0);
+    options.search.progress = progress.callback();
+    sol = dp::solve_journey(p.train, routes, dwells, time_s, options);
+  }
 
-  std::cout << sol.summary.BriefReport();
-  std::printf("  %-10s %9s %10s %12s %10s %14s %9s\n", "section", "length_m", "time_s",
-              "traction_kJ", "regen_kJ", "marginal_kJ/s", "dwell_s");
+  std::FILE* out = report_stream(outputs);
+  std::fputs(sol.summary.BriefReport().c_str(), out);
+  const std::string cap_note = speed_cap_note(p.line, stops, p.train);
+  if (!cap_note.empty()) std::fprintf(out, "  note: %s\n", cap_note.c_str());
+  if (options.min_regime.active()) {
+    const double cost_kJ = units::J_to_kJ(sol.merged_cost_J - sol.unmerged_cost_J);
+    std::fprintf(
+        out,
+        "  minimum regime %.0f m / %.0f s: %d phases merged, energy %+.1f kJ (%+.4f %%) "
+        "against the unmerged optimum of %.1f kJ\n",
+        options.min_regime.min_length_m, options.min_regime.min_duration_s, sol.merged_regimes,
+        cost_kJ,
+        sol.unmerged_cost_J > 0.0 ? 100.0 * (sol.merged_cost_J / sol.unmerged_cost_J - 1.0) : 0.0,
+        units::J_to_kJ(sol.unmerged_cost_J));
+  }
+  // Per section: what it took, what it used, and whether it met its stop and its limits.
+  std::fprintf(out, "  %-10s %9s %10s %12s %10s %14s %9s %11s %13s\n", "section", "length_m",
+               "time_s", "traction_kJ", "regen_kJ", "marginal_kJ/s", "dwell_s", "stop_err_m",
+               "overspeed_kmh");
   for (std::size_t i = 0; i < sol.sections.size(); ++i) {
     const auto& s = sol.sections[i];
-    std::printf("  %-10s %9.1f %10.3f %12.1f %10.1f %14s %9.1f\n",
-                (stops[i] + "-" + stops[i + 1]).c_str(), routes[i].length_m(),
-                s.run.sim.running_time_s, units::J_to_kJ(s.run.sim.energy.traction_work_J),
-                units::J_to_kJ(s.run.sim.energy.regen_J),
-                std::isfinite(s.marginal_J_per_s)
-                    ? std::to_string(s.marginal_J_per_s / 1000.0).substr(0, 9).c_str()
-                    : "-",
-                s.dwell_after_s);
+    const std::string marginal = std::isfinite(s.marginal_J_per_s)
+                                     ? dp::format_text("%.3f", s.marginal_J_per_s / 1000.0)
+                                     : "-";
+    std::fprintf(out, "  %-10s %9.1f %10.3f %12.1f %10.1f %14s %9.1f %11.3f %13.3f\n",
+                 (stops[i] + "-" + stops[i + 1]).c_str(), routes[i].length_m(),
+                 s.run.sim.running_time_s, units::J_to_kJ(s.run.sim.energy.traction_work_J),
+                 units::J_to_kJ(s.run.sim.energy.regen_J), marginal.c_str(), s.dwell_after_s,
+                 s.run.sim.stop_error_m,
+                 units::ms_to_kmh(std::max(0.0, s.run.sim.max_overspeed_ms)));
   }
-  if (full_report) {
-    std::fflush(stdout);
-    std::cout << sol.summary.FullReport();
-  } else {
-    for (const auto& w : sol.warnings) std::printf("  warning: %s\n", w.c_str());
-  }
+  std::fputs(full_report ? sol.summary.FullReport().c_str() : warnings_text(sol.warnings).c_str(),
+             out);
+  std::fflush(out);
   if (!sol.summary.IsSolutionUsable()) {
-    std::fflush(stdout);
     throw std::runtime_error(
         "the journey misses a stop or its running time (see the warnings); no output was written");
   }
@@ -93,8 +149,20 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   output::JourneyLabels labels{stops, args.split, problem.ds_m, problem.dv_kmh,
                                sol.summary.threads};
   nlohmann::json report = output::journey_json(sol, labels);
-  report["provenance"] = run_provenance(
-      p, problem, {{"time_s", time_s}, {"dwells", args.dwells}, {"split", args.split}});
+  report["provenance"] = run_provenance(p, problem,
+                                        {{"time_s", time_s},
+                                         {"dwells", args.dwells},
+                                         {"split", args.split},
+                                         {"min_regime_m", args.min_regime.min_length_m},
+                                         {"min_regime_s", args.min_regime.min_duration_s}});
+  report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
+  if (args.min_regime.active()) {
+    report["min_regime"] = {{"min_length_m", args.min_regime.min_length_m},
+                            {"min_duration_s", args.min_regime.min_duration_s},
+                            {"merged_phases", sol.merged_regimes},
+                            {"unmerged_energy_kJ", units::J_to_kJ(sol.unmerged_cost_J)},
+                            {"cost_kJ", units::J_to_kJ(sol.merged_cost_J - sol.unmerged_cost_J)}};
+  }
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s (%s split): %.2f s running, traction %.0f kJ",
                 stops.front().c_str(), stops.back().c_str(), args.split.c_str(), sol.running_time_s,

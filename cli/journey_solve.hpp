@@ -3,11 +3,13 @@
 // that is not named; --split chooses the optimal (one lambda) or the proportional split.
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
+#include "dp/regimes.hpp"
 
 namespace ecorail::cli {
 
@@ -15,7 +17,21 @@ struct JourneyArgs {
   std::vector<std::string> dwells;  // "A7=45" or "30"
   std::string split = "optimal";    // a dp::split_name
   std::string marginals = "auto";   // on, off, auto (on up to 4 sections)
+  // Shared with single-section solves: --min-regime-m/-s and --quiet.
+  dp::MinRegimeOptions min_regime;
+  bool quiet = false;
 };
+
+// Where the human report goes: stderr when an output is written to standard output ("-"), so
+// that stdout carries only that output; stdout otherwise.
+std::FILE* report_stream(const OutputOptions& outputs);
+// The note a report carries when the line allows more than the train can run on the way from
+// stops.front() to stops.back(): those limits are capped at the train's maximum speed
+// (data::build_route). Empty when no limit is capped.
+std::string speed_cap_note(const data::Line& line, const std::vector<std::string>& stops,
+                           const physics::Train& train);
+// "  warning: ..." lines, one per warning.
+std::string warnings_text(const std::vector<std::string>& warnings);
 
 // Dwell at each intermediate stop: parses the text and hands the meaning to dp::resolve_dwells.
 // InputError for a malformed value; dp::DwellError for an unknown or non-intermediate station,

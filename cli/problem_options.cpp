@@ -1,11 +1,17 @@
 #include "cli/problem_options.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <string>
 
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "data/ttobench_io.hpp"
+#include "dp/threads.hpp"
 
 namespace ecorail::cli {
 
@@ -19,7 +25,12 @@ void check_grid_flags(const ProblemOptions& o) {
   if (!(o.dv_kmh > 0.0 && o.dv_kmh <= 10.0)) {
     throw data::InputError("command line", 0, "--dv", "a speed step in (0, 10] km/h");
   }
-  if (o.threads < 0) throw data::InputError("command line", 0, "--threads", "at least 1");
+  if (o.threads < 0 || o.threads > dp::kMaxThreads) {
+    throw data::InputError("command line", 0, "--threads",
+                           "0 (all cores) to " + std::to_string(dp::kMaxThreads) +
+                               " threads (the bound on OpenMP threads); got " +
+                               std::to_string(o.threads));
+  }
 }
 }  // namespace
 
@@ -32,9 +43,15 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
   }
   add_pass_through_option(cmd, o);
   cmd->add_option("--line", o.line_path,
-                  "line: a directory of stations/gradients/speed_limits/curves CSVs or a TOML "
-                  "file (default: the embedded reference line)");
-  cmd->add_option("--train", o.train_path, "train TOML file (default: the reference train)");
+                  "line: a directory of stations/gradients/speed_limits/curves CSVs, a TOML "
+                  "file or a TTOBench track JSON (default: the embedded reference line)");
+  cmd->add_option("--train", o.train_path,
+                  "train TOML file or TTOBench train JSON (default: the reference train)");
+  cmd->add_option("--curve-resistance", o.curve_resistance,
+                  "curve resistance formula: 600/R, or roeckl (500/(R-30) from 300 m, "
+                  "650/(R-55) below)")
+      ->check(CLI::IsMember({std::string("600/R"), std::string("roeckl")}))
+      ->capture_default_str();
   cmd->add_option("--ds", o.ds_m, "grid position step in m")->capture_default_str();
   cmd->add_option("--dv", o.dv_kmh, "grid speed step in km/h")->capture_default_str();
   cmd->add_option("--threads", o.threads, "OpenMP threads (default: all cores)");
@@ -50,6 +67,22 @@ Problem load_problem(const ProblemOptions& o) {
   Problem p{o.line_path.empty() ? data::default_line() : data::load_line(o.line_path),
             o.train_path.empty() ? data::default_train() : data::load_train(o.train_path),
             {}};
+  if (o.curve_resistance == "roeckl") p.line.curve_formula = data::CurveFormula::Roeckl;
+  if (p.train.pneumatic_brake_N > 0.0 && o.objective == "net") {
+    // The DP's regeneration credit does not split braking into regenerative and pneumatic
+    // parts yet (the re-simulated ledger does), so the net objective is refused, not misused.
+    throw data::InputError("command line", 0, "--objective",
+                           "traction for a train with a pneumatic brake (" + o.train_path +
+                               "); the net objective does not split the brake yet; got net");
+  }
+  // TTOBench fields accepted but not modelled are said, never dropped in silence.
+  // (Once per run: a load without --from only looks up the line's stops.)
+  for (const std::string* path : {&o.line_path, &o.train_path}) {
+    if (o.from.empty() || path->empty() || !std::filesystem::is_regular_file(*path)) continue;
+    for (const auto& field : data::ttobench_unmodelled_fields(data::read_text_file(*path))) {
+      std::cerr << "ecorail: note: " << *path << ": " << field << "\n";
+    }
+  }
   if (!o.from.empty()) {
     const std::vector<std::string> stops = run_stops(p.line, o);
     if (stops.size() > 2) {

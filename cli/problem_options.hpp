@@ -25,8 +25,9 @@ struct ProblemOptions {
   std::vector<std::string> pass_through;  // intermediate stations passed without stopping
   double ds_m = 5.0;
   double dv_kmh = 0.2;
-  int threads = 0;                     // 0: OpenMP's default
-  std::string objective = "traction";  // a dp::objective_name
+  int threads = 0;                         // 0: OpenMP's default
+  std::string objective = "traction";      // a dp::objective_name
+  std::string curve_resistance = "600/R";  // or "roeckl" (data::CurveFormula)
 };
 
 struct Problem {

@@ -1,12 +1,15 @@
 #include "data/atomic_file.hpp"
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace ecorail::data {
@@ -29,6 +32,28 @@ std::filesystem::path temp_for(const std::filesystem::path& target) {
 void remove_quietly(const std::filesystem::path& p) {
   std::error_code ignored;
   std::filesystem::remove(p, ignored);
+}
+
+// An anonymous temporary in the target's directory (O_TMPFILE): it has no name until commit
+// links it, so a process killed while writing (SIGKILL, the OOM killer) leaves nothing behind.
+// Writers open it by the name /proc/PID/fd/N (gnuplot, a child, too). Returns -1 where the file
+// system cannot (then the named temporary of temp_for is used).
+int anonymous_temp(const std::filesystem::path& target, std::filesystem::path* name) {
+  if (::access("/proc/self/fd", X_OK) != 0) return -1;
+  std::filesystem::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  const int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd >= 0) {
+    *name = "/proc/" + std::to_string(::getpid()) + "/fd/" + std::to_string(fd);
+  }
+  return fd;
+}
+
+// Gives the anonymous temporary a name next to the target (for the instant before the rename).
+void link_anonymous(const std::filesystem::path& fd_name, const std::filesystem::path& tmp) {
+  if (::linkat(AT_FDCWD, fd_name.c_str(), AT_FDCWD, tmp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+    throw std::runtime_error(std::strerror(errno));
+  }
 }
 
 void check_target(const std::filesystem::path& path) {
@@ -68,9 +93,12 @@ std::string output_target_problem(const std::filesystem::path& path) {
 }
 
 OutputBatch::~OutputBatch() {
-  if (committed_) return;
   for (const auto& e : entries_) {
-    if (!e.tmp.empty()) remove_quietly(e.tmp);
+    if (e.fd >= 0) {
+      ::close(e.fd);  // an anonymous temporary vanishes with its last descriptor
+    } else if (!committed_ && !e.tmp.empty()) {
+      remove_quietly(e.tmp);
+    }
   }
 }
 
@@ -81,23 +109,37 @@ void OutputBatch::add(const std::filesystem::path& path,
     if (!out) throw std::runtime_error("cannot open for writing");
     write(out);
     out.flush();
-    if (!out) throw std::runtime_error("write failed");
+    if (!out) throw std::runtime_error(std::string("write failed: ") + std::strerror(errno));
+    out.close();
+    if (!out) throw std::runtime_error(std::string("write failed: ") + std::strerror(errno));
   });
 }
 
 void OutputBatch::add_produced(const std::filesystem::path& path,
                                const std::function<void(const std::filesystem::path&)>& produce) {
-  const auto tmp = temp_for(path);
+  std::filesystem::path tmp = temp_for(path);
+  int fd = -1;
   try {
     check_target(path);
+    if (!is_stdout_path(path)) fd = anonymous_temp(path, &tmp);
     produce(tmp);
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(tmp, ec))) {
+    const auto st =
+        fd >= 0 ? std::filesystem::status(tmp, ec) : std::filesystem::symlink_status(tmp, ec);
+    if (!std::filesystem::is_regular_file(st)) {
       throw std::runtime_error("nothing was written");
     }
   } catch (const std::exception& ex) {
-    remove_quietly(tmp);
+    if (fd >= 0) {
+      ::close(fd);
+    } else {
+      remove_quietly(tmp);
+    }
     throw std::runtime_error("cannot write " + path.string() + ": " + ex.what());
+  }
+  if (fd >= 0) {
+    entries_.push_back({path, tmp, {}, fd});
+    return;
   }
   if (is_stdout_path(path)) {
     // Held in memory until commit: a temporary file outside the target's directory could be
@@ -129,7 +171,18 @@ void OutputBatch::commit() {
       continue;
     }
     std::error_code ec;
-    std::filesystem::rename(e.tmp, e.target, ec);
+    if (e.fd >= 0) {
+      const auto named = temp_for(e.target);
+      try {
+        link_anonymous(e.tmp, named);
+      } catch (const std::exception& ex) {
+        throw std::runtime_error("cannot write " + e.target.string() + ": " + ex.what());
+      }
+      std::filesystem::rename(named, e.target, ec);
+      if (ec) remove_quietly(named);
+    } else {
+      std::filesystem::rename(e.tmp, e.target, ec);
+    }
     if (ec) {
       throw std::runtime_error("cannot write " + e.target.string() + ": " + ec.message());
     }

@@ -46,6 +46,7 @@ class OutputBatch {
   struct Entry {
     std::filesystem::path target, tmp;  // tmp: empty for standard output
     std::string stdout_content;         // what goes to standard output at commit
+    int fd = -1;  // an anonymous temporary (O_TMPFILE) behind tmp = /proc/PID/fd/N, or -1
   };
   std::vector<Entry> entries_;
   bool committed_ = false;

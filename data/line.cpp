@@ -48,6 +48,33 @@ std::uint64_t Line::checksum() const {
   append_table(text, "gradients", gradients);
   append_table(text, "speed_limits", limits);
   append_table(text, "curves", curves);
+  // The extensions join the text only when used, so the checksums of lines without them (and
+  // the frontier caches keyed by them) are unchanged.
+  if (!curvatures.empty()) {
+    text += "curvatures\n";
+    for (const auto& c : curvatures) {
+      for (const double v : {c.start_km_post_m, c.end_km_post_m}) {
+        append_number(text, v);
+        text += ' ';
+      }
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.12g %.12g\n", c.curvature_start_per_m + 0.0,
+                    c.curvature_end_per_m + 0.0);
+      text += buf;
+    }
+  }
+  if (!tunnels.empty()) {
+    text += "tunnels\n";
+    for (const auto& t : tunnels) {
+      for (const double v : {t.start_km_post_m, t.end_km_post_m, t.cross_section_m2}) {
+        append_number(text, v);
+        text += ' ';
+      }
+      text += '\n';
+    }
+  }
+  if (curve_formula == CurveFormula::Roeckl) text += "curve_formula roeckl\n";
+  if (cap_limits_at_train_speed) text += "cap_limits_at_train_speed\n";
   return fnv1a64(text);
 }
 

@@ -7,7 +7,9 @@
 #include "data/csv_reader.hpp"
 #include "data/embedded.hpp"
 #include "data/input_error.hpp"
+#include "data/plausibility.hpp"
 #include "data/toml_util.hpp"
+#include "data/ttobench_io.hpp"
 
 namespace ecorail::data {
 
@@ -59,6 +61,35 @@ std::vector<IntervalRow> rows_from_csv(const CsvTable& t, const TableSpec& spec)
 
 // ---- validation ---------------------------------------------------------------------------
 
+// Plausibility ranges (data/plausibility.hpp): values that parse but describe no railway.
+void check_plausible(const IntervalRow& r, const std::string& file, const TableSpec& spec) {
+  auto refuse = [&](const char* field, const std::string& expected, double got) {
+    throw InputError(file, r.source_row, field,
+                     expected + " (plausibility range); got " + format_number(got));
+  };
+  for (const auto& [field, km] : {std::pair{kStart, r.start_km_post_m}, {kEnd, r.end_km_post_m}}) {
+    if (!(std::abs(km) <= plausible::kMaxKmPost_m)) {
+      refuse(field, "a km post within +-" + format_number(plausible::kMaxKmPost_m) + " m", km);
+    }
+  }
+  if (&spec == &kGradients && !(std::abs(r.value) <= plausible::kMaxGradient_permille)) {
+    refuse(spec.value_key,
+           "a gradient within +-" + format_number(plausible::kMaxGradient_permille) + " per mille",
+           r.value);
+  }
+  if (&spec == &kCurves && r.value != 0.0 && !(r.value >= plausible::kMinCurveRadius_m)) {
+    refuse(spec.value_key,
+           "0 (straight) or a radius of at least " + format_number(plausible::kMinCurveRadius_m) +
+               " m",
+           r.value);
+  }
+  if (&spec == &kLimits && !(r.value <= plausible::kMaxSpeedLimit_kmh)) {
+    refuse(spec.value_key,
+           "a speed limit of at most " + format_number(plausible::kMaxSpeedLimit_kmh) + " km/h",
+           r.value);
+  }
+}
+
 // Row checks in file order, then sorts by start and checks that consecutive rows meet.
 void validate_table(std::vector<IntervalRow>& rows, const std::string& file,
                     const TableSpec& spec) {
@@ -80,6 +111,7 @@ void validate_table(std::vector<IntervalRow>& rows, const std::string& file,
       throw InputError(file, r.source_row, value_key,
                        "a radius of at least 0 m (0 = straight); got " + format_number(r.value));
     }
+    check_plausible(r, file, spec);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const IntervalRow& a, const IntervalRow& b) {
     return a.start_km_post_m < b.start_km_post_m;
@@ -211,6 +243,15 @@ CsvTable embedded_table(const char* name) {
 
 }  // namespace
 
+Line line_from_csv_tables(const CsvTable& stations, const CsvTable& gradients,
+                          const CsvTable& limits, const CsvTable& curves) {
+  return line_from_csv(stations, gradients, limits, curves);
+}
+
+Line line_from_toml_text(std::string_view text, const std::string& file) {
+  return line_from_toml(text, file);
+}
+
 Line default_line() {
   Line line = line_from_csv(embedded_table("stations.csv"), embedded_table(kGradients.csv_name),
                             embedded_table(kLimits.csv_name), embedded_table(kCurves.csv_name));
@@ -233,9 +274,12 @@ Line load_line(const std::filesystem::path& path) {
         CsvTable::read(path / kLimits.csv_name), CsvTable::read(path / kCurves.csv_name));
   } else if (path.extension() == ".toml") {
     line = line_from_toml(read_text_file(path), path.string());
+  } else if (const std::string text = read_text_file(path); looks_like_json(text)) {
+    line = line_from_ttobench(text, path.string());  // TTOBench track, known by its content
   } else {
     throw InputError(path.string(), 0, "",
-                     "a directory of line CSV files or a .toml line file; got a file named " +
+                     "a directory of line CSV files, a .toml line file or a TTOBench track (JSON); "
+                     "got a file named " +
                          in_quotes(path.filename().string()));
   }
   line.name = path.string();

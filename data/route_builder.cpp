@@ -6,6 +6,8 @@
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "data/plausibility.hpp"
+#include "data/ttobench_route_terms.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::data {
@@ -116,23 +118,23 @@ physics::Route build_route(const Line& line, const std::string& from, const std:
   const auto limits = rows_on_route(line.limits, line.limits_file, span);
   const auto curves = rows_on_route(line.curves, line.curves_file, span);
 
-  const double vmax_kmh = units::ms_to_kmh(train.max_speed_ms);
   for (const auto& r : limits) {
     if (!(r.value > 0.0)) {
       throw InputError(line.limits_file, r.source_row, "limit_kmh",
                        "a speed limit above 0 km/h; got " + format_number(r.value));
     }
-    if (r.value > vmax_kmh + 1e-9) {
-      throw InputError(line.limits_file, r.source_row, "limit_kmh",
-                       "at most the train's maximum speed of " + format_number(vmax_kmh) +
-                           " km/h on the route " + span.label + "; got " + format_number(r.value));
-    }
+    // A limit above the train's maximum speed is the track's, not the train's: the train runs
+    // at most at its maximum there (capped below; the program says so in its report).
   }
   for (const auto& r : curves) {
     if (r.value < 0.0) {
       throw InputError(line.curves_file, r.source_row, "radius_m",
                        "a radius of at least 0 m (0 = straight); got " + format_number(r.value));
     }
+  }
+
+  if (needs_route_terms(line, train)) {  // clothoids, Roeckl, tunnels, train length
+    return physics::Route(route_term_segments(line, p0, dir, length, train), p0, dir, from, to);
   }
 
   // Change points in the travel direction: s = |km - p0|.
@@ -161,6 +163,7 @@ physics::Route build_route(const Line& line, const std::string& from, const std:
     seg.gradient_permille = dir * value_at(gradients, km_mid) + 0.0;
     seg.curve_radius_m = value_at(curves, km_mid);
     seg.speed_limit_ms = units::kmh_to_ms(value_at(limits, km_mid));
+    seg.speed_limit_ms = std::min(seg.speed_limit_ms, train.max_speed_ms);
     if (!segments.empty() && segments.back().gradient_permille == seg.gradient_permille &&
         segments.back().curve_radius_m == seg.curve_radius_m &&
         segments.back().speed_limit_ms == seg.speed_limit_ms) {
@@ -169,7 +172,9 @@ physics::Route build_route(const Line& line, const std::string& from, const std:
       segments.push_back(seg);
     }
   }
-  return physics::Route(std::move(segments), p0, dir, from, to);
+  physics::Route route(std::move(segments), p0, dir, from, to);
+  plausible::check_can_start(train, route, "train '" + train.name + "'");
+  return route;
 }
 
 std::vector<std::string> stops_between(const Line& line, const std::string& from,

@@ -2,7 +2,8 @@
 // position runs from 0 at the departure station, gradients change sign when the train runs
 // towards decreasing kilometre posts, and the three tables are merged into segments of constant
 // gradient, curve and limit. Errors (unknown station, same station twice, a stretch the tables
-// do not cover, a limit above the train's maximum speed) are InputErrors naming file and row.
+// do not cover) are InputErrors naming file and row; a limit above the train's maximum speed is
+// capped at that maximum.
 #pragma once
 
 #include <string>

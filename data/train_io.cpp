@@ -11,7 +11,9 @@
 #include "data/embedded.hpp"
 #include "data/input_error.hpp"
 #include "data/line.hpp"
+#include "data/plausibility.hpp"
 #include "data/toml_util.hpp"
+#include "data/ttobench_io.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::data {
@@ -175,6 +177,9 @@ double file_value(double si, double guess, double (*to_si)(double)) {
 double mass_to_kg(double mass_t) {
   return units::t_to_kg(mass_t);
 }
+double kN_to_N(double f_kN) {
+  return 1000.0 * f_kN;
+}
 double speed_to_ms(double v_kmh) {
   return units::kmh_to_ms(v_kmh);
 }
@@ -242,7 +247,8 @@ physics::Train parse_train_toml(const std::string& text, const std::string& file
   toml_util::check_keys(
       root,
       {"name", "mass_t", "rotating_mass_factor", "gravity_m_s2", "max_speed_kmh", "max_accel_m_s2",
-       "max_decel_m_s2", "traction_efficiency", "regen_efficiency", "davis", "traction", "braking"},
+       "max_decel_m_s2", "traction_efficiency", "regen_efficiency", "davis", "traction", "braking",
+       "pneumatic_brake_kN", "length_m", "tunnel_drag"},
       file_label, 0, "");
   physics::Train train;
   const toml::node* name = root.get("name");
@@ -263,10 +269,13 @@ physics::Train parse_train_toml(const std::string& text, const std::string& file
   const double vmax_kmh = r.number(root, "max_speed_kmh", "");
   r.require(vmax_kmh > 0.0, "max_speed_kmh", "a maximum speed above 0 km/h", vmax_kmh);
   train.max_speed_ms = speed_to_ms(vmax_kmh);
-  train.max_accel_m_s2 = r.number(root, "max_accel_m_s2", "");
+  // An absent comfort limit is no limit (a TTOBench train without one, written as TOML).
+  train.max_accel_m_s2 =
+      r.optional_number(root, "max_accel_m_s2", std::numeric_limits<double>::infinity());
   r.require(train.max_accel_m_s2 > 0.0, "max_accel_m_s2", "an acceleration limit above 0 m/s^2",
             train.max_accel_m_s2);
-  train.max_decel_m_s2 = r.number(root, "max_decel_m_s2", "");
+  train.max_decel_m_s2 =
+      r.optional_number(root, "max_decel_m_s2", std::numeric_limits<double>::infinity());
   r.require(train.max_decel_m_s2 > 0.0, "max_decel_m_s2", "a deceleration limit above 0 m/s^2",
             train.max_decel_m_s2);
   train.traction_efficiency = r.number(root, "traction_efficiency", "");
@@ -284,6 +293,32 @@ physics::Train parse_train_toml(const std::string& text, const std::string& file
 
   train.traction = r.envelope(root, "traction");
   train.braking = r.envelope(root, "braking");
+  // Optional terms of TTOBench trains (docs/formats.md): pneumatic brake, length, tunnel drag.
+  train.pneumatic_brake_N = kN_to_N(r.optional_number(root, "pneumatic_brake_kN", 0.0));
+  r.require(train.pneumatic_brake_N >= 0.0, "pneumatic_brake_kN", "a force of at least 0 kN",
+            train.pneumatic_brake_N / 1000.0);
+  train.length_m = r.optional_number(root, "length_m", 0.0);
+  r.require(train.length_m >= 0.0, "length_m", "a length of at least 0 m", train.length_m);
+  if (const toml::array* drag =
+          root.get("tunnel_drag") ? root.get("tunnel_drag")->as_array() : nullptr) {
+    for (std::size_t i = 0; i < drag->size(); ++i) {
+      const std::string key = "tunnel_drag[" + std::to_string(i + 1) + "]";
+      const toml::array* pair = drag->get(i)->as_array();
+      if (pair == nullptr || pair->size() != 2) r.fail(key, "a pair [m^2, kN/(km/h)^2]");
+      physics::TunnelDrag d{toml_util::number(pair->get(0), file_label, 0, key + "[1]"),
+                            toml_util::number(pair->get(1), file_label, 0, key + "[2]")};
+      r.require(d.cross_section_m2 > 0.0 &&
+                    (train.tunnel_drag.empty() ||
+                     d.cross_section_m2 > train.tunnel_drag.back().cross_section_m2),
+                key + "[1]", "increasing cross-sections above 0 m^2", d.cross_section_m2);
+      r.require(d.C_kN_per_kmh2 >= 0.0, key + "[2]", "a coefficient of at least 0",
+                d.C_kN_per_kmh2);
+      train.tunnel_drag.push_back(d);
+    }
+  } else if (root.contains("tunnel_drag")) {
+    r.fail("tunnel_drag", "an array of pairs [m^2, kN/(km/h)^2]");
+  }
+  plausible::check_train(train, file_label);
   return train;
 }
 
@@ -296,7 +331,10 @@ physics::Train default_train() {
 }
 
 physics::Train load_train(const std::filesystem::path& path) {
-  return parse_train_toml(read_text_file(path), path.string());
+  const std::string text = read_text_file(path);
+  // A TTOBench train (JSON), known by its content.
+  if (looks_like_json(text)) return train_from_ttobench(text, path.string());
+  return parse_train_toml(text, path.string());
 }
 
 std::string train_to_toml(const physics::Train& t) {
@@ -308,10 +346,28 @@ std::string train_to_toml(const physics::Train& t) {
   out += "max_speed_kmh = " +
          toml_float(file_value(t.max_speed_ms, units::ms_to_kmh(t.max_speed_ms), speed_to_ms)) +
          "\n";
-  out += "max_accel_m_s2 = " + toml_float(t.max_accel_m_s2) + "\n";
-  out += "max_decel_m_s2 = " + toml_float(t.max_decel_m_s2) + "\n";
+  if (std::isfinite(t.max_accel_m_s2)) {  // absent = no limit
+    out += "max_accel_m_s2 = " + toml_float(t.max_accel_m_s2) + "\n";
+  }
+  if (std::isfinite(t.max_decel_m_s2)) {
+    out += "max_decel_m_s2 = " + toml_float(t.max_decel_m_s2) + "\n";
+  }
   out += "traction_efficiency = " + toml_float(t.traction_efficiency) + "\n";
   out += "regen_efficiency = " + toml_float(t.regen_efficiency) + "\n";
+  // The TTOBench terms only when used, so existing trains keep their text and checksum.
+  if (t.pneumatic_brake_N != 0.0) {
+    out += "pneumatic_brake_kN = " +
+           toml_float(file_value(t.pneumatic_brake_N, t.pneumatic_brake_N / 1000.0, kN_to_N)) +
+           "\n";
+  }
+  if (t.length_m != 0.0) out += "length_m = " + toml_float(t.length_m) + "\n";
+  if (!t.tunnel_drag.empty()) {
+    out += "tunnel_drag = [";
+    for (const auto& d : t.tunnel_drag) {
+      out += "[" + toml_float(d.cross_section_m2) + ", " + toml_float(d.C_kN_per_kmh2) + "],";
+    }
+    out += "]\n";
+  }
   out += "\n[davis]\n";
   out += "A = " + toml_float(t.davis.A) + "\n";
   out += "B = " + toml_float(t.davis.B) + "\n";

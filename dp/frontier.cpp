@@ -22,6 +22,11 @@ bool FrontierOptions::IsValid(std::string* error) const {
   }
   if (t_max_s > 0.0 && t_max_s < t_min_s) return fail("t_max_s must not be below t_min_s");
   if (!(step_s > 0.0 && std::isfinite(step_s))) return fail("step_s must be a step in s > 0");
+  // Each point is a solve of about 0.1 s: bound the count before any work, not after hours.
+  const double span_s = t_max_s > 0.0 ? t_max_s - t_min_s : 60.0;
+  if (span_s / step_s > kMaxFrontierPoints) {
+    return fail("the frontier would have more than 10000 points: raise step_s or lower t_max_s");
+  }
   if (!(convexity_tolerance >= 0.0 && std::isfinite(convexity_tolerance))) {
     return fail("convexity_tolerance must be a finite number >= 0");
   }
@@ -107,29 +112,19 @@ Frontier compute_frontier(const SectionEngine& engine, const FrontierOptions& op
     f.points.push_back({target, sim.running_time_s, sim.energy.traction_work_J, sim.energy.regen_J,
                         sim.energy.net_J(), engine.energy_cost_J(sim), lambda, ok, evaluations});
   };
-  TimeSearchOptions search = options.search;
+  LatticeRuns lattice;
   double t = t_min;
   if (t_min <= f.min_time_s + 1e-9) {
     // The minimum itself is the flat-out run (lambda infinite); go on from the next step.
     add(f.min_time_s, flat_out, INFINITY, true, 1);
     t = std::floor(f.min_time_s / options.step_s + 1.0) * options.step_s;
   }
-  for (; t <= t_max + 1e-9; t += options.step_s) {
-    // Warm start: extrapolate log(lambda) linearly in time from the last two points, and
-    // bracket in small steps around the prediction.
-    const std::size_t n = f.points.size();
-    if (n >= 2 && std::isfinite(f.points[n - 2].lambda_J_per_s)) {
-      const auto& a = f.points[n - 2];
-      const auto& b = f.points[n - 1];
-      const double slope = (std::log(b.lambda_J_per_s) - std::log(a.lambda_J_per_s)) /
-                           (b.running_time_s - a.running_time_s);
-      search.lambda_guess = std::exp(std::log(b.lambda_J_per_s) + slope * (t - b.running_time_s));
-      search.bracket_factor = 1.15;
-      search.lambda_tolerance_s = std::max(search.lambda_tolerance_s, 0.25 * options.step_s);
-    }
-    const TimeSearchResult r = solve_for_time(engine, t, search);
+  const int total = static_cast<int>(std::floor((t_max + 1e-9 - t) / options.step_s)) + 1;
+  for (int k = 0; t <= t_max + 1e-9; t += options.step_s, ++k) {
+    // No warm start from the previous point: each point is the stand-alone solve of its time.
+    const TimeSearchResult r = solve_for_time(engine, t, options.search, {}, &lattice);
     add(t, r.run.sim, r.run.lambda, r.converged, r.iterations + r.trim_iterations);
-    search.lambda_guess = r.run.lambda;
+    report_progress(options.progress, "point", k + 1, total);
   }
   check_frontier_shape(f, options.convexity_tolerance);
   return f;

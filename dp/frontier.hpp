@@ -1,6 +1,8 @@
 // Energy-time frontier of a section: the optimal energy at each running time from the minimum
-// upwards. Each point is a full running-time solve (re-simulated), warm-started from the
-// previous point's lambda so a frontier costs a few lambda evaluations per point. The frontier
+// upwards. Each point is a full running-time solve (re-simulated) that takes exactly the path of
+// a stand-alone solve for that time (solve_for_time with the same search options), so the two
+// give the same run; the lattice prices every search walks are computed once per frontier
+// (LatticeRuns). The frontier
 // of an optimal-control problem is decreasing and convex; the grid can make it wobble by a
 // little, and every place where it does is reported with its size rather than smoothed away.
 #pragma once
@@ -8,11 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "dp/progress.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/termination.hpp"
 #include "dp/time_target.hpp"
 
 namespace ecorail::dp {
+
+inline constexpr double kMaxFrontierPoints = 10000.0;  // (t_max - t_min) / step at most
 
 struct FrontierOptions {
   double t_min_s = 0.0;  // 0: the section's minimum running time
@@ -21,6 +26,8 @@ struct FrontierOptions {
   TimeSearchOptions search;
   // A second difference below -convexity_tolerance * energy counts as a convexity wobble.
   double convexity_tolerance = 1e-5;
+  // Called after each point ("point", done, total); may be empty.
+  ProgressFn progress;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };

@@ -5,6 +5,7 @@
 #include "dp/section_solve.hpp"
 #include "dp/text_format.hpp"
 #include "dp/threads.hpp"
+#include "physics/energy_balance.hpp"
 #include "physics/units.hpp"
 
 #include <omp.h>
@@ -59,6 +60,7 @@ void optimal_split(const std::vector<const SectionEngine*>& engines, double targ
   auto evaluate = [&](double x) {
     std::vector<LambdaRun> runs = run_all(engines, std::exp(x), start);
     ++out.lambda_evaluations;
+    report_progress(opt.progress, "lambda evaluation", out.lambda_evaluations, 0);
     const double f = total_time(runs) - target;
     if (std::abs(f) < best_err) {
       best_err = std::abs(f);
@@ -194,10 +196,9 @@ void summarise_journey(const std::vector<physics::Route>& routes, double min_tot
 }  // namespace
 
 std::string JourneySummary::BriefReport() const {
-  // The time price as the journey report has always printed it (std::to_string: 6 decimals).
-  const std::string price = std::isfinite(lambda_J_per_s)
-                                ? ", lambda " + std::to_string(lambda_J_per_s / 1000.0) + " kJ/s"
-                                : std::string();
+  // The time price in the one format of every report (lambda_text).
+  const std::string price =
+      std::isfinite(lambda_J_per_s) ? ", lambda " + lambda_text(lambda_J_per_s) : std::string();
   return format_text(
       "ecorail solve %s -> %s (%d sections, %s split) in %.3f s running time: traction %.1f "
       "kJ, regenerated %.1f kJ%s, %.3f s wall, %s\n",
@@ -219,7 +220,7 @@ std::string JourneySummary::FullReport() const {
                    grid.dv_kmh, grid.substep_m);
   r += format_text("  %-28s %d\n", "Threads", threads);
   if (std::isfinite(lambda_J_per_s)) {
-    r += format_text("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
+    r += format_text("  %-28s %s\n", "Lambda (time price)", lambda_text(lambda_J_per_s).c_str());
   }
   r += format_text("  %-28s %d lambda evaluations\n", "Search", lambda_evaluations);
   r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
@@ -249,7 +250,7 @@ bool JourneyOptions::IsValid(std::string* error) const {
     if (error) *error = why;
     return false;
   };
-  if (!engine.IsValid(error) || !search.IsValid(error)) return false;
+  if (!engine.IsValid(error) || !search.IsValid(error) || !min_regime.IsValid(error)) return false;
   if (split != Split::Optimal && split != Split::Proportional) {
     return fail("split must be optimal or proportional");
   }
@@ -338,10 +339,25 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   }
   out.search_wall_s = seconds_since(t1);
 
+  // A minimum regime: each section merged and trimmed back to its own running time.
+  for (std::size_t i = 0; i < runs.size() && options.min_regime.active(); ++i) {
+    MinRegimeResult m =
+        enforce_min_regime(*engines[i], runs[i], runs[i].sim.running_time_s, options.min_regime);
+    out.merged_regimes += m.merged_entries;
+    out.unmerged_cost_J += m.cost_before_J;
+    out.merged_cost_J += m.cost_after_J;
+    if (m.short_entries_left > 0) {
+      out.warnings.push_back(format_text(
+          "section %s -> %s: %d control phases remain below the "
+          "minimum regime",
+          routes[i].from_name().c_str(), routes[i].to_name().c_str(), m.short_entries_left));
+    }
+    runs[i] = std::move(m.run);
+  }
   for (std::size_t i = 0; i < runs.size(); ++i) {
     JourneySection sec;
     sec.run = std::move(runs[i]);
-    sec.regimes = regime_spans(sec.run.sim.trace);
+    sec.regimes = regime_spans(sec.run.sim.trace, std::max(0.5, options.min_regime.min_length_m));
     sec.dwell_after_s = i < dwells_s.size() ? dwells_s[i] : 0.0;
     sec.min_time_s = min_times[i];
     sec.marginal_J_per_s = NAN;
@@ -380,6 +396,15 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
       std::snprintf(msg, sizeof msg, "section %s -> %s misses its stop by %.2f m",
                     routes[i].from_name().c_str(), routes[i].to_name().c_str(), sim.stop_error_m);
       out.warnings.push_back(msg);
+    }
+    // The last check before a result: its energy balances (physics/energy_balance.hpp).
+    const physics::EnergyBalance balance = physics::energy_balance(engines[i]->motion(), sim);
+    if (!balance.closes()) {
+      out.converged = false;
+      out.warnings.push_back(
+          format_text("section %s -> %s: energy does not balance by %.1f kJ (dissipation %.1f kJ)",
+                      routes[i].from_name().c_str(), routes[i].to_name().c_str(),
+                      balance.residual_J / 1e3, balance.dissipation_J / 1e3));
     }
   }
   if (!time_met) {

@@ -50,6 +50,9 @@ struct JourneyOptions {
   // Where the train is in the first section (a restart mid-run): the journey is then the rest
   // of the run, and total_time_s the running time that remains.
   StartState start;
+  // A minimum length or duration of the control phases (dp/regimes.hpp): each section's run is
+  // merged and trimmed back to its own running time, so the total is kept. None by default.
+  MinRegimeOptions min_regime;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -109,6 +112,10 @@ struct JourneySolution {
   double net_J = 0.0;
   int lambda_evaluations = 0;
   bool converged = false;
+  // With a minimum regime: phases merged over all sections and the energy (by the objective)
+  // before and after, against the unmerged optimum.
+  int merged_regimes = 0;
+  double unmerged_cost_J = 0.0, merged_cost_J = 0.0;
   double build_wall_s = 0.0;
   double search_wall_s = 0.0;
   double total_wall_s = 0.0;

@@ -1,6 +1,8 @@
 #include "dp/policy_extraction.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace ecorail::dp {
 
@@ -93,6 +95,115 @@ physics::ControlProgram extract_program(const physics::Motion& motion, const Sta
     e = adv.e_end;
   }
   return simplify_program(program, settings.min_entry_m);
+}
+
+namespace {
+
+// Speed and time of a re-simulated run at position s (linear between trace points).
+struct TraceState {
+  double v_ms = 0.0, t_s = 0.0;
+};
+TraceState state_at(const std::vector<physics::TracePoint>& trace, double s) {
+  if (trace.empty()) return {};
+  const auto it =
+      std::lower_bound(trace.begin(), trace.end(), s,
+                       [](const physics::TracePoint& p, double x) { return p.s_m < x; });
+  if (it == trace.begin()) return {it->v_ms, it->t_s};
+  if (it == trace.end()) return {trace.back().v_ms, trace.back().t_s};
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double w = b.s_m > a.s_m ? (s - a.s_m) / (b.s_m - a.s_m) : 1.0;
+  return {a.v_ms + w * (b.v_ms - a.v_ms), a.t_s + w * (b.t_s - a.t_s)};
+}
+
+bool swings(Control c) {
+  return c == Control::MaxTraction || c == Control::Coast;
+}
+
+}  // namespace
+
+physics::ControlProgram hold_cruising(const physics::ControlProgram& program,
+                                      const physics::SimulationResult& sim,
+                                      const CruiseSettings& settings) {
+  const auto& trace = sim.trace;
+  const std::size_t n = program.size();
+  if (n < 4 || trace.size() < 2) return program;
+  physics::ControlProgram out;
+  std::size_t i = 0;
+  while (i < n) {
+    // The longest run i..j of alternating traction and coasting whose switch speeds stay in
+    // the band.
+    std::size_t j = i;
+    double v_lo = INFINITY, v_hi = -INFINITY;
+    while (swings(program[i].control) && j + 1 < n && swings(program[j + 1].control) &&
+           program[j + 1].control != program[j].control) {
+      const double v = state_at(trace, program[j + 1].from_m).v_ms;
+      const double lo = std::min(v_lo, v), hi = std::max(v_hi, v);
+      const double band_kmh = (hi - lo) * 3.6;
+      if (band_kmh > settings.max_band_kmh ||
+          band_kmh > settings.max_band_fraction * 0.5 * (hi + lo) * 3.6) {
+        break;
+      }
+      v_lo = lo, v_hi = hi;
+      ++j;
+    }
+    // Switches i+1..j: j - i of them, alternating maxima and minima of the speed.
+    if (static_cast<int>(j - i) < settings.min_swings) {
+      out.push_back(program[i]);
+      ++i;
+      continue;
+    }
+    // The hold's speed: the mean over the saw tooth proper (from the first switch to the last).
+    const double s_a = program[i + 1].from_m, s_b = program[j].from_m;
+    const double dt = state_at(trace, s_b).t_s - state_at(trace, s_a).t_s;
+    const double v_hold = dt > 0.0 ? (s_b - s_a) / dt : state_at(trace, s_a).v_ms;
+    // Where the run's first phase reaches that speed (traction rising through it, or coasting
+    // falling through it); at its end when it does not.
+    double x = s_a;
+    const bool rising = program[i].control == Control::MaxTraction;
+    for (std::size_t k = 1; k < trace.size(); ++k) {
+      const auto& a = trace[k - 1];
+      const auto& b = trace[k];
+      if (b.s_m <= program[i].from_m) continue;
+      if (a.s_m >= s_a) break;
+      const bool crosses =
+          rising ? (a.v_ms < v_hold && b.v_ms >= v_hold) : (a.v_ms > v_hold && b.v_ms <= v_hold);
+      if (crosses) {
+        const double w = (v_hold - a.v_ms) / (b.v_ms - a.v_ms);
+        x = std::max(program[i].from_m, a.s_m + w * (b.s_m - a.s_m));
+        break;
+      }
+    }
+    if (x > program[i].from_m) out.push_back(program[i]);
+    out.push_back({x, Control::Hold});
+    out.push_back(program[j]);
+    i = j + 1;
+  }
+  return simplify_program(out, 0.0);
+}
+
+physics::ControlProgram merge_short_entries(const physics::ControlProgram& program,
+                                            const physics::SimulationResult& sim,
+                                            double min_length_m, double min_duration_s,
+                                            int* merged) {
+  const double end_m = sim.trace.empty() ? 0.0 : sim.trace.back().s_m;
+  physics::ControlProgram out;
+  int dropped = 0;
+  for (std::size_t k = 0; k < program.size(); ++k) {
+    const double from = program[k].from_m;
+    const double to = k + 1 < program.size() ? program[k + 1].from_m : std::max(from, end_m);
+    const double duration = state_at(sim.trace, to).t_s - state_at(sim.trace, from).t_s;
+    const bool short_entry = (min_length_m > 0.0 && to - from < min_length_m) ||
+                             (min_duration_s > 0.0 && duration < min_duration_s);
+    if (k > 0 && short_entry) {
+      ++dropped;  // the control before it runs on
+      continue;
+    }
+    if (!out.empty() && out.back().control == program[k].control) continue;
+    out.push_back(program[k]);
+  }
+  if (merged != nullptr) *merged = dropped;
+  return out;
 }
 
 physics::ControlProgram simplify_program(const physics::ControlProgram& program,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dp/resource_estimate.hpp"
 #include "dp/threads.hpp"
 
 namespace ecorail::dp {
@@ -29,15 +30,20 @@ bool EngineOptions::IsValid(std::string* error) const {
   if (!(decision_step_m > 0.0 && std::isfinite(decision_step_m))) {
     return fail("decision_step_m must be a positive number of metres");
   }
-  if (threads < 0) return fail("threads must be 0 (OpenMP's default) or more");
+  if (threads < 0 || threads > kMaxThreads) {
+    return fail("threads must be 0 (OpenMP's default) to 1024 (dp::kMaxThreads)");
+  }
   return true;
 }
 
 namespace {
 // Options are checked before any work (the envelope and the table are the expensive part).
-const EngineOptions& validated(const EngineOptions& options) {
+// The grid's memory is estimated too, so a grid too fine is refused before it is allocated.
+const EngineOptions& validated(const EngineOptions& options, const physics::Train& train,
+                               const physics::Route& route) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  check_engine_fits(train, route, options.grid, options.envelope_resolution_m);
   return options;
 }
 }  // namespace
@@ -46,7 +52,7 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
                              const EngineOptions& options)
     : train_(train),
       route_(route),
-      options_(validated(options)),
+      options_(validated(options, train, route)),
       envelope_(train_, route_, options.envelope_resolution_m),
       motion_(train_, route_, envelope_),
       grid_(envelope_, route_.length_m(), options.grid) {
@@ -87,6 +93,13 @@ LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
   out.start = start;
   out.program = extract_program(motion_, grid_, value, options_.objective, settings);
   out.sim = simulate(out.program, start);
+  if (options_.cruise_as_hold) {
+    physics::ControlProgram held = hold_cruising(out.program, out.sim);
+    if (held.size() < out.program.size()) {
+      out.program = std::move(held);
+      out.sim = simulate(out.program, start);
+    }
+  }
   out.cost_J = energy_cost_J(out.sim);
   return out;
 }

@@ -27,6 +27,9 @@ struct EngineOptions {
   // OpenMP threads for this engine's parallel parts (0: OpenMP's default). Results do not
   // depend on it (tested); see dp/threads.hpp.
   int threads = 0;
+  // Cruising as a speed hold: a saw tooth of traction and coasting in the extracted program is
+  // replaced by a hold at its mean speed (dp::hold_cruising) before the re-simulation.
+  bool cruise_as_hold = true;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };

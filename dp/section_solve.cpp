@@ -2,12 +2,14 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "dp/text_format.hpp"
 #include "dp/threads.hpp"
+#include "physics/energy_balance.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
@@ -55,8 +57,10 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   const auto t2 = std::chrono::steady_clock::now();
 
   SectionSolution out;
-  out.run = std::move(found.run);
-  out.regimes = regime_spans(out.run.sim.trace);
+  // A minimum regime merges short phases and trims the run back to the target.
+  MinRegimeResult merged = enforce_min_regime(engine, found.run, target_time_s, options.min_regime);
+  out.run = std::move(merged.run);
+  out.regimes = regime_spans(out.run.sim.trace, std::max(0.5, options.min_regime.min_length_m));
   SectionSolveSummary& s = out.summary;
   s.from = route.from_name();
   s.to = route.to_name();
@@ -76,10 +80,29 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.search_wall_s = std::chrono::duration<double>(t2 - t1).count();
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
   summarise_run(out.run.sim, target_time_s, s);
+  s.min_regime = options.min_regime;
+  s.merged_regimes = merged.merged_entries;
+  s.unmerged_energy_kJ = units::J_to_kJ(merged.cost_before_J);
+  s.min_regime_cost_kJ = units::J_to_kJ(merged.cost_after_J - merged.cost_before_J);
+  if (merged.short_entries_left > 0) {
+    s.warnings.push_back(format_text("%d control phases remain below the minimum regime",
+                                     merged.short_entries_left));
+  }
   // A run that misses its stop or its time is never a converged result, whatever the search
   // reported (see SectionSolveSummary::IsSolutionUsable).
-  s.termination = termination_of(run_arrives(out.run.sim),
-                                 found.converged && run_meets_targets(out.run.sim, target_time_s));
+  // Nor is a run whose energy does not balance (input that slipped past validation).
+  const physics::EnergyBalance balance = physics::energy_balance(engine.motion(), out.run.sim);
+  if (!balance.closes()) {
+    s.warnings.push_back(format_text(
+        "energy does not balance: traction %.1f kJ - braking %.1f kJ - resistance %.1f kJ - "
+        "kinetic %.1f kJ = %.1f kJ (tolerance %.1f kJ), dissipation %.1f kJ",
+        balance.traction_work_J / 1e3, balance.brake_work_J / 1e3, balance.resistance_work_J / 1e3,
+        balance.kinetic_change_J / 1e3, balance.residual_J / 1e3, balance.tolerance_J / 1e3,
+        balance.dissipation_J / 1e3));
+  }
+  s.termination = termination_of(
+      run_arrives(out.run.sim),
+      found.converged && run_meets_targets(out.run.sim, target_time_s) && balance.closes());
   s.converged = s.termination == Termination::CONVERGENCE;
   if (!found.converged) {
     s.warnings.push_back(
@@ -91,12 +114,22 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
 std::string SectionSolveSummary::BriefReport() const {
   std::string r = format_text(
       "ecorail solve %s -> %s (%.1f m) in %.3f s: traction %.1f kJ, regenerated %.1f kJ, "
-      "stop error %.3f m, max overspeed %.3f km/h; lambda %.1f kJ/s, %d lambda evaluations, "
+      "stop error %.3f m, max overspeed %.3f km/h; lambda %s, %d lambda evaluations, "
       "%.3f s wall, %s",
       from.c_str(), to.c_str(), distance_m, running_time_s, traction_energy_kJ, regen_energy_kJ,
-      stop_error_m, max_overspeed_kmh, lambda_J_per_s / 1000.0, lambda_evaluations, total_wall_s,
-      std::string(status_word(termination, warnings.size())).c_str());
-  return r + "\n";
+      stop_error_m, max_overspeed_kmh, lambda_text(lambda_J_per_s).c_str(), lambda_evaluations,
+      total_wall_s, std::string(status_word(termination, warnings.size())).c_str());
+  return r + "\n" + min_regime_text();
+}
+
+std::string SectionSolveSummary::min_regime_text() const {
+  if (!min_regime.active()) return "";
+  return format_text(
+      "  minimum regime %.0f m / %.0f s: %d phases merged, energy %+.1f kJ (%+.4f %%) against "
+      "the unmerged optimum of %.1f kJ\n",
+      min_regime.min_length_m, min_regime.min_duration_s, merged_regimes, min_regime_cost_kJ,
+      unmerged_energy_kJ > 0.0 ? 100.0 * min_regime_cost_kJ / unmerged_energy_kJ : 0.0,
+      unmerged_energy_kJ);
 }
 
 std::string SectionSolveSummary::FullReport() const {
@@ -112,11 +145,12 @@ std::string SectionSolveSummary::FullReport() const {
                    grid.dv_kmh, grid.substep_m);
   r += format_text("  %-28s %d stages, %d nodes\n", "", stages, nodes);
   r += format_text("  %-28s %d\n", "Threads", threads);
-  r += format_text("  %-28s %.3f kJ/s\n", "Lambda (time price)", lambda_J_per_s / 1000.0);
+  r += format_text("  %-28s %s\n", "Lambda (time price)", lambda_text(lambda_J_per_s).c_str());
   r += format_text("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n",
                    "Search", lambda_evaluations, trim_simulations, trim_shift_m);
   r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
                    search_wall_s, total_wall_s);
+  r += min_regime_text();
   r += result_block_text({running_time_s, traction_energy_kJ, braking_energy_kJ, regen_energy_kJ,
                           net_energy_kJ, "Stop error", stop_error_m, max_overspeed_kmh, termination,
                           &warnings});

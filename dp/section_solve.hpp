@@ -18,8 +18,12 @@ namespace ecorail::dp {
 struct SectionSolveOptions {
   EngineOptions engine;
   TimeSearchOptions search;
+  // A minimum length or duration of the control phases (dp/regimes.hpp); none by default.
+  MinRegimeOptions min_regime;
   // Checks every field; on failure writes one sentence naming the field into *error.
-  bool IsValid(std::string* error) const { return engine.IsValid(error) && search.IsValid(error); }
+  bool IsValid(std::string* error) const {
+    return engine.IsValid(error) && search.IsValid(error) && min_regime.IsValid(error);
+  }
 };
 
 struct SectionSolveSummary {
@@ -48,10 +52,18 @@ struct SectionSolveSummary {
   double net_energy_kJ = 0.0;
   double stop_error_m = 0.0;
   double max_overspeed_kmh = 0.0;
+  // With a minimum regime: the minimum, the phases merged and what it cost (energy by the
+  // objective, against the unmerged optimum at the same running time).
+  MinRegimeOptions min_regime;
+  int merged_regimes = 0;
+  double unmerged_energy_kJ = 0.0;
+  double min_regime_cost_kJ = 0.0;
   std::vector<std::string> warnings;
 
   std::string BriefReport() const;
   std::string FullReport() const;
+  // The minimum-regime line of both reports (empty without a minimum).
+  std::string min_regime_text() const;
   // False when the run misses its stop or its time: such a run must not be written as a result.
   bool IsSolutionUsable() const { return is_usable(termination); }
 };

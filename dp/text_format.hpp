@@ -16,6 +16,13 @@ std::string format_text(const char* fmt, Args... args) {
   return buf;
 }
 
+// The time price lambda as every text output writes it (reports, tables): kJ/s with three
+// decimals, e.g. "264.359 kJ/s". JSON and CSV carry the same number under "lambda" (with
+// "lambda_unit": "kJ/s") or a column "lambda_kJ_per_s".
+inline std::string lambda_text(double lambda_J_per_s) {
+  return format_text("%.3f kJ/s", lambda_J_per_s / 1000.0);
+}
+
 // The "Re-simulated result" block that ends a section's or a journey's full report, so both
 // name and format the same figures alike (stop_label: "Stop error", "Stop error (largest)").
 struct ResultBlock {

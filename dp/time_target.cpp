@@ -95,8 +95,22 @@ SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start) 
   return out;
 }
 
+bool LatticeRuns::find(double lambda, LambdaRun* run) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = runs_.find(lambda);
+  if (it == runs_.end()) return false;
+  *run = it->second;
+  return true;
+}
+
+void LatticeRuns::keep(const LambdaRun& run) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  runs_.emplace(run.lambda, run);
+}
+
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
-                                const TimeSearchOptions& options, const StartState& start) {
+                                const TimeSearchOptions& options, const StartState& start,
+                                LatticeRuns* memo) {
   const physics::SimulationResult flat_out = engine.min_time_run(start);
   if (flat_out.stopped_early) {
     throw std::invalid_argument("the train cannot reach the end of the section from this state");
@@ -127,9 +141,16 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
       have_best = true;
     }
   };
+  // While the bracket walks the lattice, runs come from (and go to) the memo.
+  bool walking = memo != nullptr;
   auto evaluate = [&](double x) {
-    LambdaRun run = engine.run(std::exp(x), start);
-    ++out.iterations;
+    LambdaRun run;
+    if (!(walking && memo->find(std::exp(x), &run))) {
+      run = engine.run(std::exp(x), start);
+      ++out.iterations;
+      if (walking) memo->keep(run);
+      report_progress(options.progress, "lambda evaluation", out.iterations, 0);
+    }
     const double f = run_arrives(run.sim) ? run.sim.running_time_s - target : INFINITY;
     consider(std::move(run));
     return f;
@@ -147,6 +168,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
 
   LambdaBracket bracket(evaluate, std::log(options.lambda_guess), std::log(options.bracket_factor),
                         options.max_iterations);
+  walking = false;
   // First to the coarse tolerance, where the trim takes over; if the trim cannot close the gap,
   // on to the fine tolerance without it.
   const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,

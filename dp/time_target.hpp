@@ -19,11 +19,14 @@
 // longer one with LongTimeError, as it refuses one below the flat-out run.
 #pragma once
 
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "dp/progress.hpp"
 #include "dp/section_engine.hpp"
 
 namespace ecorail::dp {
@@ -91,6 +94,8 @@ struct TimeSearchOptions {
   int max_iterations = 60;
   double lambda_guess = 3e5;    // J/s; only a starting point
   double bracket_factor = 4.0;  // lambda is multiplied or divided by this while bracketing
+  // Called after each lambda evaluation ("lambda evaluation", count, 0); may be empty.
+  ProgressFn progress;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -110,11 +115,27 @@ struct TimeSearchResult {
 bool trim_to_time(const SectionEngine& engine, double target_time_s, double tolerance_s,
                   TimeSearchResult& result);
 
+// Runs already computed on the search's lattice of prices (lambda_guess times powers of
+// bracket_factor), shared by consecutive searches on one engine from one start, e.g. the points
+// of a frontier. Every search brackets its time by walking that lattice from lambda_guess, so a
+// frontier point and a stand-alone solve for the same time take the same path to the same run;
+// with a memo, the frontier pays for each lattice price once. Thread-safe.
+class LatticeRuns {
+ public:
+  bool find(double lambda, LambdaRun* run) const;
+  void keep(const LambdaRun& run);
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<double, LambdaRun> runs_;
+};
+
 // From rest at the departure, or (start given) for the rest of the section from a mid-run state
 // in the remaining running time target_time_s. InfeasibleTimeError below the flat-out time,
 // LongTimeError above the slow limit; otherwise converged says whether the time was met by a
 // run that arrives.
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target_time_s,
-                                const TimeSearchOptions& options, const StartState& start = {});
+                                const TimeSearchOptions& options, const StartState& start = {},
+                                LatticeRuns* memo = nullptr);
 
 }  // namespace ecorail::dp

@@ -6,12 +6,14 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "data/plausibility.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::fitting {
@@ -58,6 +60,19 @@ std::vector<EnvelopePoint> parse_envelope_points(std::string_view text, const st
     if (p.force_kN < 0.0) {
       throw data::InputError(label, r.row, t.header()[*f],
                              "a force of at least 0 kN; got " + t.text(r, *f));
+    }
+    // Plausibility ranges (data/plausibility.hpp): 1e300 km/h once aborted inside Ceres.
+    if (p.speed_kmh > data::plausible::kMaxTrainSpeed_kmh) {
+      throw data::InputError(label, r.row, t.header()[*v],
+                             "a speed of at most " +
+                                 data::format_number(data::plausible::kMaxTrainSpeed_kmh) +
+                                 " km/h (plausibility range); got " + t.text(r, *v));
+    }
+    if (p.force_kN > data::plausible::kMaxForce_kN) {
+      throw data::InputError(label, r.row, t.header()[*f],
+                             "a force of at most " +
+                                 data::format_number(data::plausible::kMaxForce_kN) +
+                                 " kN (plausibility range); got " + t.text(r, *f));
     }
     pts.push_back(p);
   }
@@ -238,6 +253,8 @@ FormFit fit_piecewise(const std::vector<EnvelopePoint>& pts, int degree) {
     }
   }
 
+  // No finite least-squares fit at any breakpoint: never hand Ceres an empty parameter block.
+  if (best.empty()) throw std::invalid_argument("envelope fit: no finite fit at any breakpoint");
   std::vector<double> x = best;
   ceres::Problem problem;
   for (const auto& p : pts) {

@@ -13,7 +13,9 @@
 
 #include "output/gnuplot.hpp"
 #include "physics/trip.hpp"
+#include "power/load_flow.hpp"
 #include "timetable/fleet_models.hpp"
+#include "timetable/network_evaluation.hpp"
 #include "timetable/power_balance.hpp"
 
 namespace ecorail::output {
@@ -23,7 +25,14 @@ struct FleetTimetable {
   std::vector<std::string> stations;  // in the order of travel
   std::vector<double> positions_m;    // along the run
   std::vector<int> departures_s;
-  physics::Trip trip;  // the pattern, departing at 0
+  physics::Trip trip;                               // the pattern, departing at 0
+  std::vector<timetable::PeakWindow> peak_windows;  // shaded on the train diagram
+  // Per-train patterns: train k's own trip (departing at 0); empty when all run `trip`.
+  std::vector<physics::Trip> per_train_trips;
+  // Train k's run on the clock.
+  physics::Trip train_trip(std::size_t k) const {
+    return (per_train_trips.empty() ? trip : per_train_trips.at(k)).shifted(departures_s.at(k));
+  }
 };
 
 // "HH:MM:SS" of a clock time in seconds past the service day's start (rounded to the second).
@@ -46,5 +55,18 @@ void write_train_diagram(const std::filesystem::path& file, PlotFormat format,
                          const std::string& title);
 void write_power_plot(const std::filesystem::path& file, PlotFormat format,
                       const timetable::PowerBalance::Trace& trace, const std::string& title);
+
+// Network model: the keys of docs/fleet.md's network section (substations, line losses,
+// traction input, auxiliaries, used and curtailed regeneration, train voltages, curtailment
+// events), added to the energy breakdown.
+void add_network_json(nlohmann::json& energy, const timetable::NetworkEvaluation& network);
+// Power of every substation over the trace's window.
+void write_substation_plot(const std::filesystem::path& file, PlotFormat format,
+                           const timetable::SubstationTrace& trace, const std::string& title);
+// The voltage along the line at one instant: the load flow's nodes (substations and trains,
+// joined by the conductor's linear voltage drop), with the trains' voltage limits.
+void write_voltage_plot(const std::filesystem::path& file, PlotFormat format,
+                        const power::LoadFlowResult& flow, const power::PowerSupply& supply,
+                        const std::vector<int>& train_numbers, const std::string& title);
 
 }  // namespace ecorail::output

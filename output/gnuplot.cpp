@@ -54,7 +54,24 @@ int run_program(const std::vector<std::string>& args, const std::filesystem::pat
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// Directories of this kind left by a process that no longer exists (killed with SIGKILL while
+// plotting: it had no chance to remove its directory) are removed by the next plot.
+void remove_orphaned_temp_dirs(const std::string& stem) {
+  std::error_code ec;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::temp_directory_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem, 0) != 0) continue;
+    const long pid = std::strtol(name.c_str() + stem.size(), nullptr, 10);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      std::filesystem::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
 std::filesystem::path fresh_temp_dir(const char* stem) {
+  remove_orphaned_temp_dirs(stem);
   static std::atomic<unsigned> counter{0};
   const auto dir =
       std::filesystem::temp_directory_path() /

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "data/atomic_file.hpp"
 #include "data/version.hpp"
+#include "output/quiet_stderr.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::output {
@@ -133,8 +135,14 @@ void write_profile_xlsx_file(const std::filesystem::path& file, const Timeline& 
   worksheet_set_column(info, 1, 1, static_cast<double>(std::min<std::size_t>(text_width, 60)) + 2.0,
                        nullptr);
 
-  if (workbook_close(book) != LXW_NO_ERROR) {
-    throw std::runtime_error("libxlsxwriter could not write the workbook");
+  lxw_error closed;
+  {
+    const QuietStderr quiet;  // libxlsxwriter prints its own "[ERROR]" lines; we report once
+    closed = workbook_close(book);
+  }
+  if (closed != LXW_NO_ERROR) {
+    throw std::runtime_error(std::string("libxlsxwriter could not write the workbook: ") +
+                             lxw_strerror(closed));
   }
 }
 

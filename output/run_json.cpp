@@ -10,6 +10,7 @@ nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& r : spans) {
     list.push_back({{"regime", physics::regime_name(r.regime)},
+                    {"speed_hold", r.speed_hold},
                     {"start_m", r.start_m},
                     {"end_m", r.end_m},
                     {"start_speed_kmh", units::ms_to_kmh(r.start_speed_ms)},
@@ -59,6 +60,13 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   j["search"] = {{"lambda_evaluations", s.lambda_evaluations},
                  {"trim_simulations", s.trim_simulations},
                  {"trim_shift_m", s.trim_shift_m}};
+  if (s.min_regime.active()) {
+    j["min_regime"] = {{"min_length_m", s.min_regime.min_length_m},
+                       {"min_duration_s", s.min_regime.min_duration_s},
+                       {"merged_phases", s.merged_regimes},
+                       {"unmerged_energy_kJ", s.unmerged_energy_kJ},
+                       {"cost_kJ", s.min_regime_cost_kJ}};
+  }
   j["solve_wall_s"] = s.total_wall_s;
   j["threads"] = s.threads;
   return j;

@@ -23,7 +23,8 @@ struct RegimeStyle {
 // Warm colours for traction, blue for coasting, greens for braking, grey for standing.
 constexpr RegimeStyle kRegimeStyles[] = {
     {physics::Regime::FullTraction, false, "#d62728", "full traction"},
-    {physics::Regime::PartialTraction, false, "#ff7f0e", "partial traction (cruise, limit)"},
+    {physics::Regime::PartialTraction, false, "#ff7f0e",
+     "speed hold (cruise, limit), partial traction"},
     {physics::Regime::Coast, false, "#1f77b4", "coast"},
     {physics::Regime::PartialBrake, false, "#8fd175", "partial brake"},
     {physics::Regime::FullBrake, false, "#2ca02c", "full brake"},

@@ -5,7 +5,7 @@
 namespace ecorail::physics {
 
 double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) const {
-  const double w = train_->resistance_N(v_ms, seg.track_N_per_kN());
+  const double w = resistance_N(v_ms, seg);
   switch (c) {
     case Control::MaxTraction:
       return train_->max_traction_N(v_ms, w);
@@ -22,7 +22,7 @@ double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) 
 double Motion::de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const {
   const double v = speed_from_e(e);
   *force_N = applied_force_N(c, v, seg);
-  return (*force_N - train_->resistance_N(v, seg.track_N_per_kN())) / train_->effective_mass_kg();
+  return (*force_N - resistance_N(v, seg)) / train_->effective_mass_kg();
 }
 
 namespace {
@@ -75,7 +75,7 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
       // than the train has.
       const double e_mid = 0.5 * (e0 + e_env);
       const double v_mid = speed_from_e(e_mid);
-      const double w = train_->resistance_N(v_mid, seg.track_N_per_kN());
+      const double w = resistance_N(v_mid, seg);
       const double m = train_->effective_mass_kg();
       double u = m * (e_env - e0) / h + w;
       const double u_min = -train_->max_brake_N(v_mid, w);
@@ -99,7 +99,7 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
           out.regime = Regime::FullBrake;
           break;
         case Control::Hold: {
-          const double w = train_->resistance_N(v0, seg.track_N_per_kN());
+          const double w = resistance_N(v0, seg);
           out.regime = classify(u1, train_->max_traction_N(v0, w), train_->max_brake_N(v0, w));
           break;
         }
@@ -119,6 +119,15 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
     out.traction_work_J = work;
   } else {
     out.brake_work_J = -work;
+    out.regen_brake_work_J = out.brake_work_J;
+    if (train_->pneumatic_brake_N > 0.0 && out.length_m > 0.0) {
+      // Regeneration carries what it can (its envelope at the mean speed), the pneumatic brake
+      // the rest: every joule the regenerative brake takes is partly recovered, every joule the
+      // pneumatic one takes is lost, and both brake alike, so regeneration first is optimal.
+      const double v_mid = speed_from_e(0.5 * (e0 + out.e_end));
+      out.regen_brake_work_J =
+          std::min(out.brake_work_J, train_->braking.force_N(v_mid) * out.length_m);
+    }
   }
   out.mean_force_N = out.length_m > 0.0 ? work / out.length_m : u1;
   return out;
@@ -135,6 +144,7 @@ Advance Motion::advance(double s0, double e0, double s1, Control c, const StepSe
     out.time_s += sub.time_s;
     out.traction_work_J += sub.traction_work_J;
     out.brake_work_J += sub.brake_work_J;
+    out.regen_brake_work_J += sub.regen_brake_work_J;
     e = sub.e_end;
     if (sub.stopped) {
       // A stop that lands on the end position (within a millimetre) is an arrival, not a stall.

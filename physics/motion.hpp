@@ -30,6 +30,9 @@ struct Substep {
   double length_m = 0.0;  // shorter than requested if the train stopped
   double traction_work_J = 0.0;
   double brake_work_J = 0.0;
+  // The part of brake_work_J the regenerative brake carries (all of it unless the train has a
+  // pneumatic brake): regeneration first, the pneumatic brake only for the excess.
+  double regen_brake_work_J = 0.0;
   double mean_force_N = 0.0;  // work / length, signed (traction positive)
   Regime regime = Regime::Coast;
   bool stopped = false;       // speed reached zero inside the substep
@@ -42,7 +45,8 @@ struct Advance {
   double time_s = 0.0;
   double traction_work_J = 0.0;
   double brake_work_J = 0.0;
-  bool stalled = false;  // stopped before reaching the end position
+  double regen_brake_work_J = 0.0;  // see Substep
+  bool stalled = false;             // stopped before reaching the end position
 };
 
 class Motion {
@@ -65,6 +69,13 @@ class Motion {
   const Train& train() const { return *train_; }
   const Route& route() const { return *route_; }
   const SpeedEnvelope& envelope() const { return *envelope_; }
+  // Total resistance in N at v on a segment: Davis, gradient, curve and tunnel drag.
+  double resistance_N(double v_ms, const RouteSegment& seg) const {
+    const double w = train_->resistance_N(v_ms, seg.track_N_per_kN());
+    if (seg.tunnel_drag_N_per_kN_kmh2 == 0.0) return w;  // the common case costs one compare
+    const double v_kmh = 3.6 * v_ms;
+    return w + train_->specific_to_N(seg.tunnel_drag_N_per_kN_kmh2 * v_kmh * v_kmh);
+  }
 
  private:
   double de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const;

@@ -7,7 +7,9 @@
 namespace ecorail::physics {
 
 double RouteSegment::track_N_per_kN() const {
-  const double curve = curve_radius_m > 0.0 ? 600.0 / curve_radius_m : 0.0;
+  const double curve = curve_N_per_kN >= 0.0  ? curve_N_per_kN
+                       : curve_radius_m > 0.0 ? 600.0 / curve_radius_m
+                                              : 0.0;
   return gradient_permille + curve;
 }
 

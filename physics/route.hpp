@@ -18,8 +18,13 @@ struct RouteSegment {
   double gradient_permille = 0.0;  // uphill positive, in the travel direction
   double curve_radius_m = 0.0;     // 0 = straight
   double speed_limit_ms = 0.0;
+  // Curve resistance in N/kN when it is not 600 / curve_radius_m (< 0: it is): another formula
+  // (Roeckl), a clothoid's mean, or the mean over a train's length (data/route_builder).
+  double curve_N_per_kN = -1.0;
+  // Tunnel drag: added Davis C in N/kN per (km/h)^2 (0 outside tunnels); see Motion.
+  double tunnel_drag_N_per_kN_kmh2 = 0.0;
 
-  // Specific track resistance in N/kN: gradient plus curve (600 / R).
+  // Specific track resistance in N/kN: gradient plus curve (600 / R or curve_N_per_kN).
   double track_N_per_kN() const;
 };
 

@@ -64,8 +64,8 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     } else {
       sub = motion.substep(s, e, next - s, c, opt.rk_order);
     }
-    out.energy.add(sub.traction_work_J, sub.brake_work_J, train.traction_efficiency,
-                   train.regen_efficiency);
+    out.energy.add(sub.traction_work_J, sub.brake_work_J, sub.regen_brake_work_J,
+                   train.traction_efficiency, train.regen_efficiency);
     t += sub.time_s;
     s = sub.stopped ? s + sub.length_m : next;  // exact positions: no drift over many steps
     e = sub.e_end;

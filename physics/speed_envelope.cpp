@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace ecorail::physics {
 
@@ -11,6 +13,9 @@ namespace {
 // always follow it despite the small difference between the envelope's sampling and the
 // integrator's steps (it costs under 0.01 % of a stop's braking time).
 constexpr double kBrakeMargin = 1.0 - 2e-4;
+
+// At most this many samples (16 bytes each): 1 cm over 1000 km.
+constexpr double kMaxSamples = 1e8;
 
 // de/ds of full braking, integrated backwards (so the sign is positive): (B + W) / M_eff.
 double backward_brake_slope(const Train& train, double e, double track_N_per_kN) {
@@ -23,7 +28,15 @@ double backward_brake_slope(const Train& train, double e, double track_N_per_kN)
 
 SpeedEnvelope::SpeedEnvelope(const Train& train, const Route& route, double resolution_m) {
   length_ = route.length_m();
-  const auto samples = static_cast<std::size_t>(std::max(1.0, std::ceil(length_ / resolution_m)));
+  // Checked before the cast: a tiny or subnormal resolution gives a count no integer holds
+  // (undefined behaviour) or one no memory holds.
+  const double wanted = std::ceil(length_ / resolution_m);
+  if (!(resolution_m > 0.0) || !(wanted <= kMaxSamples)) {
+    throw std::invalid_argument("speed envelope: a resolution of " + std::to_string(resolution_m) +
+                                " m over " + std::to_string(length_) + " m needs more than " +
+                                std::to_string(static_cast<long long>(kMaxSamples)) + " samples");
+  }
+  const auto samples = static_cast<std::size_t>(std::max(1.0, wanted));
   h_ = length_ / static_cast<double>(samples);
   e_static_.assign(samples + 1, 0.0);
   // Static limit: the strictest limit of any segment within one sample of the position.

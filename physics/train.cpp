@@ -19,7 +19,7 @@ double Train::max_traction_N(double v_ms, double resistance_N) const {
 double Train::max_brake_N(double v_ms, double resistance_N) const {
   // dv/dt = (-b - W) / M_eff >= -max_decel  <=>  b <= M_eff max_decel - W
   const double limit = effective_mass_kg() * max_decel_m_s2 - resistance_N;
-  return std::max(0.0, std::min(braking.force_N(v_ms), limit));
+  return std::max(0.0, std::min(braking.force_N(v_ms) + pneumatic_brake_N, limit));
 }
 
 }  // namespace ecorail::physics

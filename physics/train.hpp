@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "physics/force_envelope.hpp"
 
@@ -17,6 +18,13 @@ struct DavisCoefficients {
   double A = 0.0;  // N/kN
   double B = 0.0;  // N/kN per km/h
   double C = 0.0;  // N/kN per (km/h)^2
+};
+
+// Extra Davis C coefficient inside a tunnel of a given cross-section (TTOBench's 'tunnel
+// resistance'): the train's drag grows with speed squared more in a narrow tunnel.
+struct TunnelDrag {
+  double cross_section_m2 = 0.0;
+  double C_kN_per_kmh2 = 0.0;  // added to the train's quadratic resistance, in kN / (km/h)^2
 };
 
 struct Train {
@@ -31,7 +39,14 @@ struct Train {
   double regen_efficiency = 0.95;
   DavisCoefficients davis;
   ForceEnvelope traction;
-  ForceEnvelope braking;
+  ForceEnvelope braking;  // the regenerative brake: it regenerates (regen_efficiency)
+  // A constant braking force beyond the regenerative envelope (pneumatic/friction brake): it
+  // brakes but regenerates nothing. 0 (the reference train): all braking is regenerative.
+  double pneumatic_brake_N = 0.0;
+  // Length (m); 0 = a point mass. The route builder then holds a limit until the tail has
+  // passed it and averages gradient, curve and tunnel forces over the train.
+  double length_m = 0.0;
+  std::vector<TunnelDrag> tunnel_drag;  // by cross-section, ascending; empty = no data
 
   double effective_mass_kg() const { return mass_kg * (1.0 + rotating_mass_factor); }
   // Converts a specific resistance in N/kN into a force in N for this train's weight.
@@ -47,7 +62,8 @@ struct Train {
   // Largest traction force applicable at v against resistance W: the envelope, reduced where the
   // net acceleration would exceed max_accel.
   double max_traction_N(double v_ms, double resistance_N) const;
-  // Largest braking force (a positive number) applicable at v against resistance W.
+  // Largest braking force (a positive number) applicable at v against resistance W: the
+  // regenerative envelope plus the pneumatic brake, reduced to keep within max_decel.
   double max_brake_N(double v_ms, double resistance_N) const;
 };
 

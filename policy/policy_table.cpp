@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -20,6 +22,8 @@ namespace ecorail::policy {
 namespace {
 
 constexpr std::size_t kMaxString = 4096;
+constexpr double kMaxRouteLength_m = 1e6;
+constexpr std::uintmax_t kMaxPolicyFileBytes = std::uintmax_t{1} << 34;  // 16 GiB
 constexpr std::size_t kChecksumBytes = 8;
 constexpr std::size_t kPreambleBytes = 8 + 4 + 8;  // magic, version, file size
 
@@ -212,6 +216,16 @@ void PolicyTable::validate() const {
         std::isfinite(envelope_resolution_m))) {
     fail("grid settings must be positive and finite");
   }
+  // Ranges, not only signs: a file is untrusted input, and a 1e-12 m substep or a subnormal
+  // envelope resolution would make inspecting or advising run for ever or allocate without end.
+  if (!(route_length_m <= kMaxRouteLength_m)) fail("route length above 1000 km");
+  if (!(grid_spec.ds_m >= 0.01 && grid_spec.ds_m <= 100.0)) fail("ds_m outside [0.01, 100] m");
+  if (!(grid_spec.dv_kmh >= 0.001 && grid_spec.dv_kmh <= 10.0))
+    fail("dv_kmh outside [0.001, 10] km/h");
+  if (!(grid_spec.substep_m >= grid_spec.ds_m / 1000.0 && grid_spec.substep_m <= grid_spec.ds_m))
+    fail("substep_m outside [ds_m / 1000, ds_m]");
+  if (!(envelope_resolution_m >= 0.01 && envelope_resolution_m <= 10.0))
+    fail("envelope_resolution_m outside [0.01, 10] m");
   if (objective != dp::Objective::Traction && objective != dp::Objective::Net)
     fail("objective code");
   if (position_m.front() != 0.0) fail("first stage is not at 0 m");
@@ -225,8 +239,12 @@ void PolicyTable::validate() const {
       stage_offset.back() != static_cast<std::uint32_t>(M)) {
     fail("stage offsets do not cover the nodes");
   }
+  // Every offset checked before any is used to index the node arrays.
   for (int i = 0; i < N; ++i) {
     if (!(stage_offset[i + 1] > stage_offset[i])) fail(dp::format_text("stage %d has no node", i));
+  }
+  if (speed_ms.size() != static_cast<std::size_t>(M)) fail("node speeds do not match the nodes");
+  for (int i = 0; i < N; ++i) {
     for (std::uint32_t n = stage_offset[i]; n < stage_offset[i + 1]; ++n) {
       if (!(std::isfinite(speed_ms[n]) && speed_ms[n] >= 0.0))
         fail(dp::format_text("speed of node %u", n));
@@ -504,6 +522,19 @@ PolicyTable decode_policy(std::string_view b, const std::string& label) {
 }
 
 PolicyTable load_policy(const std::filesystem::path& path) {
+  // Only a regular file of bounded size: /dev/zero never ends, a directory cannot be read.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw PolicyFormatError(path.string() + ": is a directory, not a policy table");
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw PolicyFormatError(path.string() + ": not a regular file, not a policy table");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxPolicyFileBytes) {
+    throw PolicyFormatError(path.string() + ": " + std::to_string(size) +
+                            " bytes, larger than any policy table this program writes (at most " +
+                            std::to_string(kMaxPolicyFileBytes) + ")");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw PolicyFormatError(path.string() + ": cannot open the policy table");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ecorail builds against. Idempotent: packages already present
-# are skipped, so a machine that has everything does not touch the network.
+# are skipped, so a machine that has everything does not touch the network. clang and
+# libclang-rt-14-dev (libFuzzer, sanitizer runtimes) are for scripts/sanitize-and-fuzz-smoke.sh.
 set -euo pipefail
 packages=(cmake g++ make pkg-config libeigen3-dev libceres-dev libgtest-dev libgmock-dev
   libbenchmark-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libxlsxwriter-dev
-  gnuplot-nox)
+  gnuplot-nox clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,9 @@
 #include "timetable/fleet_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "timetable/windowed_classes.hpp"
 
 namespace ecorail::timetable {
 
@@ -10,6 +13,8 @@ std::string_view model_name(EnergyModel m) {
       return "overlap";
     case EnergyModel::Sections:
       return "sections";
+    case EnergyModel::Network:
+      return "network";
     case EnergyModel::PowerFlow:
       break;
   }
@@ -20,6 +25,7 @@ std::optional<EnergyModel> model_from_name(std::string_view name) {
   if (name == "power-flow") return EnergyModel::PowerFlow;
   if (name == "overlap") return EnergyModel::Overlap;
   if (name == "sections") return EnergyModel::Sections;
+  if (name == "network") return EnergyModel::Network;
   return std::nullopt;
 }
 
@@ -50,6 +56,7 @@ bool FleetProblem::IsValid(std::string* error) const {
     return fail("dwell_max_s: expected >= dwell_min_s");
   const long n = trains - 1;
   if (n == 0 && span_s != 0) return fail("span_s: one train has no headway, so the span is 0");
+  if (windowed()) return windowed_problem_valid(*this, error);
   if (n > 0 && (n * headway_min_s > span_s || n * headway_max_s < span_s)) {
     return fail("span_s: " + std::to_string(n) + " headways in [" + std::to_string(headway_min_s) +
                 ", " + std::to_string(headway_max_s) + "] s sum to " +
@@ -75,7 +82,30 @@ bool EnergyModelOptions::IsValid(std::string* error) const {
       return fail("section_boundaries_m: expected increasing positions > 0 m");
     last = b;
   }
+  if (model == EnergyModel::Network) {
+    if (!power_supply) return fail("power_supply: the network model needs a power supply");
+    std::string why;
+    if (!power_supply->IsValid(&why)) return fail("power_supply: " + why);
+    if (!(std::isfinite(traction_efficiency) && traction_efficiency > 0.0 &&
+          traction_efficiency <= 1.0))
+      return fail("traction_efficiency: expected a value in (0, 1]");
+  }
   return true;
+}
+
+bool FleetProblem::headway_allowed(int from_s, int to_s) const {
+  const int h = to_s - from_s;
+  if (windowed() && is_peak_headway(peak_windows, from_s, to_s))
+    return h >= peak_headway_min_s && h <= peak_headway_max_s;
+  return h >= headway_min_s && h <= headway_max_s;
+}
+
+int FleetProblem::any_headway_min_s() const {
+  return windowed() ? std::min(headway_min_s, peak_headway_min_s) : headway_min_s;
+}
+
+int FleetProblem::any_headway_max_s() const {
+  return windowed() ? std::max(headway_max_s, peak_headway_max_s) : headway_max_s;
 }
 
 int EnergyModelOptions::ticks_per_second() const {
@@ -103,6 +133,7 @@ std::string departures_problem(const FleetProblem& p, const std::vector<int>& t)
   if (t.back() != p.span_s)
     return "the last departure is at " + std::to_string(t.back()) + " s, not the span " +
            std::to_string(p.span_s) + " s (headways sum to " + std::to_string(t.back()) + " s)";
+  if (p.windowed()) return windowed_departures_problem(p, t);
   for (std::size_t k = 1; k < t.size(); ++k) {
     const int h = t[k] - t[k - 1];
     if (h < p.headway_min_s || h > p.headway_max_s)
@@ -113,6 +144,7 @@ std::string departures_problem(const FleetProblem& p, const std::vector<int>& t)
 }
 
 std::vector<int> uniform_headways(const FleetProblem& p) {
+  if (p.windowed()) return windowed_uniform_headways(p);
   const int n = p.trains - 1;
   std::vector<int> h;
   if (n <= 0) return h;

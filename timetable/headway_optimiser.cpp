@@ -1,4 +1,5 @@
 #include "timetable/headway_optimiser.hpp"
+#include "timetable/search_support.hpp"
 
 #include <omp.h>
 
@@ -10,41 +11,45 @@
 #include <memory>
 
 #include "timetable/headway_dp.hpp"
+#include "timetable/network_optimiser.hpp"
 #include "timetable/pair_bound.hpp"
+#include "timetable/windowed_dp.hpp"
 
 namespace ecorail::timetable {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = SearchClock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Counter-based random numbers: the value depends only on (seed, run, move, draw).
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
+// Counter-based random numbers (search_support.hpp).
 std::uint64_t draw(std::uint64_t seed, std::uint64_t run, std::uint64_t move, std::uint64_t k) {
-  return mix(mix(mix(seed) ^ run) ^ (move * 4 + k));
-}
-double uniform01(std::uint64_t r) {
-  return static_cast<double>(r >> 11) * 0x1.0p-53;
+  return counter_draw(seed, run, move, k);
 }
 
 HeadwayDomain domain_of(const FleetProblem& p) {
   return {p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
 }
 
-// The departure range of train k (0 < k < N-1) given its neighbours.
+// The departure range of train k (0 < k < N-1) given its neighbours (with peak windows: the
+// range of any class; allowed() then checks the classes of both headways).
 std::pair<int, int> feasible_range(const FleetProblem& p, const std::vector<int>& t, int k) {
-  const int lo = std::max(t[k - 1] + p.headway_min_s, t[k + 1] - p.headway_max_s);
-  const int hi = std::min(t[k - 1] + p.headway_max_s, t[k + 1] - p.headway_min_s);
+  const int lo = std::max(t[k - 1] + p.any_headway_min_s(), t[k + 1] - p.any_headway_max_s());
+  const int hi = std::min(t[k - 1] + p.any_headway_max_s(), t[k + 1] - p.any_headway_min_s());
   return {lo, hi};
+}
+
+bool allowed(const FleetProblem& p, const std::vector<int>& t, int k, int d) {
+  return !p.windowed() || (p.headway_allowed(t[k - 1], d) && p.headway_allowed(d, t[k + 1]));
+}
+
+// The headway values of a table over [lo, lo + m) for both classes of a windowed problem.
+WindowedValue both_classes(const FleetProblem& p, const std::function<double(int)>& value) {
+  WindowedValue v;
+  for (int h = p.any_headway_min_s(); h <= p.any_headway_max_s(); ++h) {
+    v.peak.push_back(value(h));
+    v.offpeak.push_back(value(h));
+  }
+  return v;
 }
 
 struct RunResult {
@@ -73,6 +78,7 @@ RunResult anneal(const FleetModels& coarse, std::vector<int> t, std::uint64_t se
     const auto [lo, hi] = feasible_range(p, t, k);
     if (hi <= lo) continue;
     const int d = lo + static_cast<int>(draw(seed, run, i, 1) % (hi - lo + 1));
+    if (!allowed(p, t, k, d)) continue;
     const int back = t[k];
     mean += std::fabs(static_cast<double>(balance->move(k, d)));
     balance->move(k, back);
@@ -94,7 +100,7 @@ RunResult anneal(const FleetModels& coarse, std::vector<int> t, std::uint64_t se
     if (hi <= lo) continue;
     int d = lo + static_cast<int>(draw(seed, run, m, 1) % (hi - lo));
     if (d >= t[k]) ++d;  // never the current departure
-    if (d > hi) continue;
+    if (d > hi || !allowed(p, t, k, d)) continue;
     const MicroJoules delta = balance->move(k, d);
     const bool accept = delta >= 0 || uniform01(draw(seed, run, m, 2)) <
                                           std::exp(static_cast<double>(delta) / temperature);
@@ -124,7 +130,7 @@ long polish(PowerBalance& balance, const FleetProblem& p, std::vector<int>& t, i
       MicroJoules best = balance.used();
       int best_d = start;
       for (int d = lo; d <= hi; ++d) {
-        if (d == start) continue;
+        if (d == start || !allowed(p, t, k, d)) continue;
         balance.move(k, d);
         ++moves;
         if (balance.used() > best) best = balance.used(), best_d = d;
@@ -197,6 +203,8 @@ std::string HeadwayOptimiserSummary::FullReport() const {
 
 HeadwayOptimiserResult optimise_headways(const FleetModels& models,
                                          const HeadwayOptimiserOptions& options) {
+  if (models.options().model == EnergyModel::Network)
+    return optimise_network_headways(models, options);  // timetable/network_optimiser.hpp
   const auto t0 = Clock::now();
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
@@ -214,7 +222,29 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
     const OverlapModel& ov = models.overlap();
     std::vector<double> value(m);
     HeadwayChoice choice;
-    if (eo.overlap == OverlapVariant::Ahead) {
+    if (p.windowed()) {
+      // Peak windows: the same values, the class of each headway from the clock.
+      const int any_lo = p.any_headway_min_s(), any_m = p.any_headway_max_s() - any_lo + 1;
+      if (eo.overlap == OverlapVariant::Ahead) {
+        choice =
+            maximise_windowed(p, both_classes(p, [&](int h) { return ov.used_from_ahead_J(h); }));
+        s.method = "exact windowed DP over (train, clock time) (overlap, train ahead)";
+      } else {
+        std::vector<double> penalty(static_cast<std::size_t>(any_m) * any_m);
+        for (int a = 0; a < any_m; ++a)
+          for (int b = 0; b < any_m; ++b)
+            penalty[static_cast<std::size_t>(a) * any_m + b] =
+                ov.double_count_J(any_lo + a, any_lo + b);
+        choice = maximise_windowed_chain(
+            p,
+            both_classes(p,
+                         [&](int h) { return ov.used_from_ahead_J(h) + ov.used_from_behind_J(h); }),
+            penalty);
+        s.method =
+            "exact windowed chain DP over (train, clock time, last headway) (overlap, either "
+            "neighbour)";
+      }
+    } else if (eo.overlap == OverlapVariant::Ahead) {
       for (int e = 0; e < m; ++e) value[e] = ov.used_from_ahead_J(lo + e);
       choice = maximise_separable(dom, value);
       s.method = "exact DP over the headway sum (overlap, train ahead)";
@@ -255,7 +285,18 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
   }
   report("two-train approximation", 0.0, NAN);
   std::vector<std::vector<int>> starts;
-  starts.push_back(departures_from_headways(maximise_separable(dom, pair).headways_s));
+  if (p.windowed()) {
+    PowerBalance two({&fine, &fine}, p.any_headway_max_s() + models.trip().arrival_s() + 2.0);
+    starts.push_back(
+        departures_from_headways(maximise_windowed(p, both_classes(p,
+                                                                   [&](int h) {
+                                                                     two.place_all({0, h});
+                                                                     return to_joules(two.used());
+                                                                   }))
+                                     .headways_s));
+  } else {
+    starts.push_back(departures_from_headways(maximise_separable(dom, pair).headways_s));
+  }
   starts.push_back(departures_from_headways(uniform_headways(p)));
   MicroJoules start_best = 0;
   {
@@ -318,7 +359,12 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
   }
   const std::vector<int>& best = candidates[best_c];
   report("polish", to_joules(polished[best_c]), NAN);
-  const PairBound bound = used_regen_bound(fine, p);
+  // With peak windows the bound relaxes the classes to one range covering both (still a bound).
+  FleetProblem relaxed = p;
+  relaxed.peak_windows.clear();
+  relaxed.headway_min_s = p.any_headway_min_s();
+  relaxed.headway_max_s = p.any_headway_max_s();
+  const PairBound bound = used_regen_bound(fine, relaxed);
   out.headways_s = headways_from_departures(best);
   out.evaluation = models.evaluate(best);
   s.method = "annealing (" + std::to_string(runs) + " runs) and polish, pair bound";

@@ -4,12 +4,15 @@
 // braking phase onto another train's acceleration. The search alternates: headways optimised
 // for the pattern (optimise_headways), then the pattern improved for those headways by moves
 // that keep the trip time (a dwell longer by delta and the section before or after it shorter by
-// delta, or the reverse; deltas 4, 2, 1 s), each section re-solved energy-optimally for its new
-// running time on the section library (solves are cached), the first improving move taken, until
-// no move improves; then the headways once more. Every pattern the search keeps is feasible
-// (dwells in range, each running time above its section's flat-out run), and the result is never
-// worse than the headways alone (the search only accepts improvements). Same pattern for every
-// train.
+// delta, or the reverse; delta moved between two neighbouring sections; deltas 4, 2, 1 s), each
+// section re-solved energy-optimally for its new running time on the section library (solves are
+// cached), the first improving move taken, until no move improves; then the headways once more.
+// With per-train patterns (power-flow and sections models) a last stage gives every train its
+// own pattern: for each train in turn all its moves are priced at once against the fleet laid
+// out in one power balance (PowerBalance::substation_change_if, in parallel) and the best
+// improving one is taken, sweep after sweep until none improves. Every pattern the search keeps
+// is feasible (dwells in range, each running time above its section's flat-out run) and the
+// result is never worse than the headways alone (the search only accepts improvements).
 #pragma once
 
 #include <functional>
@@ -22,19 +25,42 @@
 
 namespace ecorail::timetable {
 
+struct PatternProgress {
+  std::string stage;  // "pattern" (one for all) or "per-train"
+  int moves_accepted = 0;
+  int patterns_evaluated = 0;
+  double substation_J = 0.0;
+  double elapsed_s = 0.0;
+};
+
 struct PatternSearchOptions {
   HeadwayOptimiserOptions headways;
   std::vector<double> deltas_s = {4.0, 2.0, 1.0};
-  int max_moves = 200;  // accepted pattern moves at most
+  int max_moves = 200;              // accepted moves of the one-pattern stage at most
+  int max_per_train_moves = 5000;   // accepted moves of the per-train stage at most
+  bool per_train_patterns = false;  // power-flow and sections models only
+  double time_limit_s = 0.0;        // of each pattern stage; 0: none
+  int threads = 0;                  // pricing per-train moves; 0: OpenMP's default
+  std::function<void(const PatternProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
 
 struct PatternSearchResult {
-  PatternTrip pattern;               // the pattern found and its trip
-  HeadwayOptimiserResult timetable;  // headways for it (final)
+  PatternTrip pattern;               // the pattern for all trains and its trip
+  HeadwayOptimiserResult timetable;  // headways and the final evaluation
   FleetEvaluation headways_only;     // the start: default pattern, its optimal headways
+  FleetEvaluation common_pattern;    // one pattern for all, before any per-train stage
   int moves_accepted = 0;
   int patterns_evaluated = 0;
+  // Per-train stage (empty when not asked): each train's pattern and trip (departing at 0).
+  std::vector<FleetPattern> per_train;
+  std::vector<physics::Trip> per_train_trips;
+  int per_train_moves_accepted = 0;
+  int per_train_candidates = 0;
+  // Why the last stage stopped: no move improves (a local optimum), or a limit.
+  bool time_limit_reached = false;
+  bool move_limit_reached = false;
+  double wall_s = 0.0;
   std::string BriefReport() const;
 };
 

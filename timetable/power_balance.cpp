@@ -11,13 +11,15 @@ PowerBalance::PowerBalance(std::vector<const PowerProfile*> profiles, double hor
   if (profiles_.empty()) throw std::invalid_argument("a power balance needs at least one train");
   ticks_per_second_ = profiles_.front()->ticks_per_second();
   sections_ = profiles_.front()->sections();
-  for (const PowerProfile* p : profiles_) {
-    if (p->ticks_per_second() != ticks_per_second_ || p->sections() != sections_)
-      throw std::invalid_argument("every profile of a power balance needs the same grid");
-  }
+  for (const PowerProfile* p : profiles_) check_grid(*p);
   bins_ = static_cast<long>(std::ceil(horizon_s * ticks_per_second_)) + 1;
   traction_bins_.assign(static_cast<std::size_t>(sections_) * bins_, 0);
   regen_bins_.assign(traction_bins_.size(), 0);
+}
+
+void PowerBalance::check_grid(const PowerProfile& profile) const {
+  if (profile.ticks_per_second() != ticks_per_second_ || profile.sections() != sections_)
+    throw std::invalid_argument("every profile of a power balance needs the same grid");
 }
 
 void PowerBalance::add(int train, int departure_s, int sign) {
@@ -58,6 +60,53 @@ MicroJoules PowerBalance::move(int train, int departure_s) {
   add(train, departure_s, +1);
   departure_s_[train] = departure_s;
   return used_ - before;
+}
+
+void PowerBalance::set_profile(int train, const PowerProfile* profile) {
+  check_grid(*profile);
+  if (!placed(train)) {
+    profiles_[train] = profile;
+    return;
+  }
+  const int departure = departure_s_[train];
+  add(train, departure, -1);
+  profiles_[train] = profile;
+  add(train, departure, +1);
+}
+
+MicroJoules PowerBalance::substation_change_if(int train, const PowerProfile& candidate) const {
+  check_grid(candidate);
+  const PowerProfile& now = *profiles_[train];
+  MicroJoules traction_change = candidate.traction_total() - now.traction_total();
+  if (!placed(train)) return traction_change;
+  const long base = static_cast<long>(departure_s_[train]) * ticks_per_second_;
+  if (base + candidate.span_bins() > bins_)
+    throw std::out_of_range("a departure outside the power balance's horizon");
+  // Both bin lists are sorted by offset and hold one bin per offset, so one merge walk visits
+  // every affected bin once; a bin both profiles touch in the same section gets both changes.
+  MicroJoules used_change = 0;
+  const auto change_at = [&](std::size_t i, MicroJoules dt, MicroJoules dr) {
+    const MicroJoules t = traction_bins_[i], r = regen_bins_[i];
+    used_change += std::min(t + dt, r + dr) - std::min(t, r);
+  };
+  const std::vector<PowerBin>& a = now.bins();
+  const std::vector<PowerBin>& b = candidate.bins();
+  std::size_t ia = 0, ib = 0;
+  while (ia < a.size() || ib < b.size()) {
+    const bool take_a = ib == b.size() || (ia < a.size() && a[ia].offset <= b[ib].offset);
+    const bool take_b = ia == a.size() || (ib < b.size() && b[ib].offset <= a[ia].offset);
+    if (take_a && take_b && a[ia].section == b[ib].section) {
+      change_at(index(a[ia].section, base + a[ia].offset), b[ib].traction - a[ia].traction,
+                b[ib].regen - a[ia].regen);
+    } else {
+      if (take_a)
+        change_at(index(a[ia].section, base + a[ia].offset), -a[ia].traction, -a[ia].regen);
+      if (take_b) change_at(index(b[ib].section, base + b[ib].offset), b[ib].traction, b[ib].regen);
+    }
+    if (take_a) ++ia;
+    if (take_b) ++ib;
+  }
+  return traction_change - used_change;
 }
 
 FleetEnergy PowerBalance::energy() const {

@@ -35,6 +35,12 @@ class PowerBalance {
   void place_all(const std::vector<int>& departures_s);
   // Moves one placed train; returns the change of used regenerated energy.
   MicroJoules move(int train, int departure_s);
+  // Gives one train another profile (same grid and sections), keeping its departure: the
+  // train's own pattern changes (per-train patterns) without rebuilding the balance.
+  void set_profile(int train, const PowerProfile* profile);
+  // The change of substation energy (traction - used) that set_profile(train, &candidate)
+  // would make, computed without changing anything (so candidates can be priced in parallel).
+  MicroJoules substation_change_if(int train, const PowerProfile& candidate) const;
 
   MicroJoules used() const { return used_; }
   MicroJoules traction() const { return traction_; }
@@ -56,6 +62,7 @@ class PowerBalance {
 
  private:
   void add(int train, int departure_s, int sign);
+  void check_grid(const PowerProfile& profile) const;
   // Traction, regenerated and used energy summed over bins of one or several sections.
   struct BinSum {
     MicroJoules traction = 0, regen = 0, used = 0;

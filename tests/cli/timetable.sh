@@ -21,6 +21,8 @@ expect_error "span_s" timetable optimise --from A6 --to A9 --trains 6 --span 500
 expect_error "flat-out running time" timetable evaluate --from A6 --to A9 --trains 6 --span 1000 --headway 150:250 --trip-time 200 "${outs[@]}"
 expect_error "--uniform" timetable evaluate "${small[@]}" --uniform --headways low.csv "${outs[@]}"
 expect_error "--sections-at" timetable evaluate "${small[@]}" --model sections "${outs[@]}"
+expect_error "--per-train-patterns" timetable optimise "${small[@]}" --per-train-patterns --model overlap "${outs[@]}"
+expect_error "--per-train-patterns" timetable optimise "${small[@]}" --per-train-patterns --optimise headways "${outs[@]}"
 
 # A good run: every output, headways within bounds, the optimum no worse than uniform.
 "$ecorail" timetable evaluate "${small[@]}" --json uni.json > /dev/null || { echo "FAIL: evaluate"; fail=1; }
@@ -44,6 +46,28 @@ rows = list(csv.DictReader(open("out.csv")))
 assert len(rows) == 6 * 4, len(rows)  # one row per train and stop
 for r in rows:
     assert float(r["departure_s"]) >= float(r["arrival_s"])
+PY
+# Per-train patterns: every train's rows in the timetable follow its own pattern (dwells in
+# range, trip time kept), and the result is no worse than one pattern for all.
+"$ecorail" timetable optimise "${small[@]}" --per-train-patterns --moves 20000 --json pt.json \
+  --csv pt.csv > pt.txt || { echo "FAIL: optimise --per-train-patterns"; fail=1; }
+python3 - <<'PY' || fail=1
+import json, csv
+o = json.load(open("pt.json"))
+ps, s = o["patterns_per_train"], o["pattern_search"]
+assert len(ps) == 6 and s["per_train_patterns"], s
+assert o["substation_energy_kJ"] <= s["common_pattern_substation_energy_kJ"] + 1e-6, s
+rows = list(csv.DictReader(open("pt.csv")))
+for p in ps:
+    mine = [r for r in rows if int(r["train"]) == p["train"]]
+    assert len(mine) == 4, mine
+    assert abs(p["trip_time_s"] - 480) < 0.05, p
+    for j, d in enumerate(p["dwells_s"]):
+        assert 30 - 1e-9 <= d <= 45 + 1e-9, p
+        r = mine[j + 1]
+        assert abs(float(r["departure_s"]) - float(r["arrival_s"]) - d) < 0.01, (r, d)
+    for j, t in enumerate(p["running_times_s"]):
+        assert abs(float(mine[j + 1]["arrival_s"]) - float(mine[j]["departure_s"]) - t) < 0.06, (mine, t)
 PY
 # A station whose name would run a command in gnuplot is drawn as text on the train diagram.
 mkdir line

@@ -165,10 +165,8 @@ TEST_F(RouteBuilder, LimitAboveTrainMaximumOnTheRoute) {
   copy_contest_line(tmp.path());
   edit_file(tmp / "speed_limits.csv", "12240,13474,80", "12240,13474,90");
   const Line line = load_line(tmp.path());
-  expect_input_error([&] { build_route(line, "A6", "A7", train_); },
-                     (tmp / "speed_limits.csv").string(), 23, "limit_kmh",
-                     {"at most the train's maximum speed of 80 km/h", "got 90"});
-  // A route that does not cross the row is fine, even one ending where the row starts.
+  // A limit above the train's maximum speed is capped at that maximum (the program says so).
+  EXPECT_DOUBLE_EQ(build_route(line, "A6", "A7", train_).speed_limit_ms(500.0), 80.0 / 3.6);
   EXPECT_NO_THROW(build_route(line, "A7", "A8", train_));
   EXPECT_NO_THROW(build_route(line, "A5", "A6", train_));
   // A faster train may use it.

@@ -15,6 +15,7 @@
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "policy/policy_table.hpp"
+#include "policy_test_support.hpp"
 
 namespace ecorail {
 namespace {
@@ -54,12 +55,7 @@ std::string reseal(std::string b) {
 }
 
 std::string error_of(const std::string& b) {
-  try {
-    policy::decode_policy(b, "t.bin");
-  } catch (const policy::PolicyFormatError& e) {
-    return e.what();
-  }
-  return "";
+  return policy::testing::decode_error_of(b);
 }
 
 TEST(PolicyFormat, RoundTripIsExact) {

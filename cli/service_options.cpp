@@ -1,0 +1,182 @@
+#include "cli/service_options.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "cli/output_options.hpp"
+#include "data/csv_reader.hpp"
+#include "data/input_error.hpp"
+#include "output/service_profiles.hpp"
+#include "service/profiles.hpp"
+#include "service/service_simulator.hpp"
+
+namespace ecorail::cli {
+
+struct ServiceRun {
+  service::ServiceResult result;
+  std::vector<std::vector<service::ProfilePoint>> profiles;
+  std::vector<service::ProfilePoint> chosen;
+  int chosen_train = 0;
+};
+
+namespace {
+
+[[noreturn]] void bad(const std::string& flag, const std::string& expected) {
+  throw data::InputError("command line", 0, flag, expected);
+}
+
+service::ServiceOptions service_options(const ServiceArgs& a) {
+  service::ServiceOptions o;
+  o.separation.train_length_m = a.train_length_m;
+  o.separation.safety_margin_m = a.safety_margin_m;
+  o.separation.braking_m_s2 = a.braking_m_s2;
+  if (a.follower == "supervise")
+    o.mode = service::FollowerMode::Supervised;
+  else if (a.follower == "reoptimise")
+    o.mode = service::FollowerMode::Reoptimised;
+  else
+    bad("--follower", "supervise or reoptimise; got '" + a.follower + "'");
+  std::string why;
+  if (!o.IsValid(&why)) bad("--train-length/--safety-margin/--braking", why);
+  return o;
+}
+
+nlohmann::json stretch_json(int train, const service::CapStretch& c) {
+  return {{"train", train + 1}, {"from_s", c.from_s}, {"to_s", c.to_s},
+          {"from_m", c.from_m}, {"to_m", c.to_m},     {"worst_margin_kmh", c.worst_margin_kmh}};
+}
+
+}  // namespace
+
+void add_service_options(CLI::App* cmd, ServiceArgs& a) {
+  cmd->add_flag("--separation", a.separation,
+                "simulate every train together with safe separation v <= sqrt(2 L b)");
+  cmd->add_option("--train-length", a.train_length_m, "train length for the separation (m)")
+      ->capture_default_str();
+  cmd->add_option("--safety-margin", a.safety_margin_m, "separation safety margin (m)")
+      ->capture_default_str();
+  cmd->add_option("--braking", a.braking_m_s2,
+                  "separation braking b (m/s^2; 0: max braking force at 10 km/h / mass)")
+      ->capture_default_str();
+  cmd->add_option("--follower", a.follower,
+                  "where the cap binds: reoptimise (energy-optimal under the cap) or supervise "
+                  "(planned control, braked)")
+      ->capture_default_str();
+  cmd->add_option("--profiles", a.profiles_csv,
+                  "every train's speed-distance profile, long format (CSV)");
+  cmd->add_option("--profile-step", a.profile_step_s, "time step of the profiles (s)")
+      ->capture_default_str();
+  cmd->add_option("--profile-plot", a.profile_plot,
+                  "one train's speed-distance profile with its separation cap (.svg or .png)");
+  cmd->add_option("--profile-train", a.profile_train,
+                  "train of --profile-plot (1-based; 0: the least separation margin)")
+      ->capture_default_str();
+}
+
+void check_service_args(const ServiceArgs& a) {
+  service_options(a);
+  if (!(a.profile_step_s >= 0.01 && a.profile_step_s <= 60.0))
+    bad("--profile-step", "0.01 to 60 s; got " + data::format_number(a.profile_step_s));
+  if (a.profile_train < 0) bad("--profile-train", "a train number >= 1 (0: the least margin)");
+  check_output_targets(
+      {{"--profiles", a.profiles_csv, false}, {"--profile-plot", a.profile_plot, true}});
+}
+
+std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
+                                              const dp::SectionLibrary& library,
+                                              const timetable::FleetPattern& pattern,
+                                              const std::vector<int>& departures_s,
+                                              nlohmann::json& energy, data::OutputBatch& batch) {
+  if (!a.wanted()) return nullptr;
+  const service::ServiceOptions o = service_options(a);
+  if (a.profile_train > static_cast<int>(departures_s.size()))
+    bad("--profile-train", "a train of the timetable, 1 to " + std::to_string(departures_s.size()));
+  // The plan: each section's energy-optimal control for the pattern's running time.
+  std::vector<physics::ControlProgram> programs;
+  for (std::size_t i = 0; i < library.size(); ++i)
+    programs.push_back(library.solve(i, pattern.running_times_s[i]).search.run.program);
+  const service::ServicePlan plan =
+      service::plan_from_programs(library, std::move(programs), pattern.dwells_s);
+  auto run = std::make_shared<ServiceRun>();
+  const std::vector<double> departures(departures_s.begin(), departures_s.end());
+  run->result = service::simulate_service(library, plan, departures, o);
+  const service::ServiceResult& r = run->result;
+  const service::ServiceSummary& sm = r.summary;
+  std::printf("separation (b = %.3f m/s^2, train length %.0f m, margin %.0f m): %s\n",
+              r.braking_m_s2, a.train_length_m, a.safety_margin_m, sm.BriefReport().c_str());
+  nlohmann::json binding = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.planned_binding.size(); ++k)
+    for (const auto& c : r.planned_binding[k]) {
+      binding.push_back(stretch_json(static_cast<int>(k), c));
+      std::printf("  cap binds: train %zu, %.0f-%.0f s, %.0f-%.0f m, worst margin %.2f km/h\n",
+                  k + 1, c.from_s, c.to_s, c.from_m, c.to_m, c.worst_margin_kmh);
+    }
+  if (binding.empty()) std::printf("  the cap never binds at the planned timetable\n");
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : r.events) {
+    events.push_back({{"train", e.train + 1},
+                      {"section", e.section + 1},
+                      {"planned_energy_kJ", e.planned_cost_J / 1e3},
+                      {"supervised_energy_kJ", e.supervised_cost_J / 1e3},
+                      {"supervised_late_s", e.supervised_late_s},
+                      {"reoptimised_energy_kJ", std::isfinite(e.reoptimised_cost_J)
+                                                    ? nlohmann::json(e.reoptimised_cost_J / 1e3)
+                                                    : nlohmann::json()},
+                      {"reoptimised_late_s", e.reoptimised_late_s},
+                      {"reoptimised_wait_s", e.reoptimised_wait_s},
+                      {"report", e.report}});
+    std::printf(
+        "  train %d section %d: planned %.1f kJ, braked by the cap %.1f kJ (%.2f s late)%s\n",
+        e.train + 1, e.section + 1, e.planned_cost_J / 1e3, e.supervised_cost_J / 1e3,
+        e.supervised_late_s,
+        std::isfinite(e.reoptimised_cost_J)
+            ? (", re-optimised " + data::format_number(e.reoptimised_cost_J / 1e3) + " kJ (" +
+               data::format_number(e.reoptimised_late_s) + " s late)")
+                  .c_str()
+            : "");
+  }
+  double traction_J = 0.0;
+  for (const auto& t : r.trips) traction_J += t.ledger().traction_work_J;
+  energy["separation"] = {{"braking_m_s2", r.braking_m_s2},
+                          {"train_length_m", a.train_length_m},
+                          {"safety_margin_m", a.safety_margin_m},
+                          {"follower", a.follower},
+                          {"min_speed_margin_kmh", sm.min_speed_margin_kmh},
+                          {"min_distance_margin_m", sm.min_distance_margin_m},
+                          {"min_gap_m", sm.min_gap_m},
+                          {"min_margin_train", sm.min_margin_train + 1},
+                          {"min_margin_at_s", sm.min_margin_at_s},
+                          {"min_margin_at_m", sm.min_margin_at_m},
+                          {"cap_binds_at_plan", !binding.empty()},
+                          {"cap_exceeded", sm.cap_exceeded},
+                          {"trains_resimulated", sm.trains_resimulated},
+                          {"max_late_s", sm.max_late_s},
+                          {"service_traction_work_kJ", traction_J / 1e3},
+                          {"planned_binding", binding},
+                          {"events", events},
+                          {"brief_report", sm.BriefReport()}};
+  if (sm.cap_exceeded)
+    throw std::runtime_error("a simulated train exceeds the separation cap: " + sm.BriefReport());
+  if (!a.profiles_csv.empty()) {
+    for (std::size_t k = 0; k < r.trips.size(); ++k)
+      run->profiles.push_back(
+          service::speed_profile(r.trips, k, r.braking_m_s2, o.separation, a.profile_step_s));
+    batch.add(a.profiles_csv,
+              [run](std::ostream& out) { output::write_profiles_csv(out, run->profiles); });
+  }
+  if (!a.profile_plot.empty()) {
+    run->chosen_train =
+        a.profile_train > 0 ? a.profile_train - 1 : std::max(0, sm.min_margin_train);
+    run->chosen = service::speed_profile(r.trips, run->chosen_train, r.braking_m_s2, o.separation,
+                                         std::min(a.profile_step_s, 0.5));
+    const auto format = *output::plot_format_for(a.profile_plot);
+    batch.add_produced(a.profile_plot, [run, format](const std::filesystem::path& f) {
+      output::write_profile_plot(f, format, run->chosen,
+                                 "Train " + std::to_string(run->chosen_train + 1) +
+                                     ": speed, separation cap and line limit");
+    });
+  }
+  return run;
+}
+
+}  // namespace ecorail::cli

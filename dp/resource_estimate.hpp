@@ -1,0 +1,51 @@
+// Resource estimate of a section engine, made before anything is allocated. A grid is
+// stages x speed nodes; each node holds kControlCount transitions and its share of the value
+// functions a lambda search keeps, so memory grows like (length / ds) x (top speed / dv). A
+// 1 cm step used to run for minutes and then die of std::bad_alloc or the kernel's OOM killer;
+// now SectionEngine refuses such a grid at once with ResourceLimitError, which states the
+// estimate, the memory this process can have (physical memory, bounded by the address-space
+// limit `ulimit -v`) and an estimate of the build time.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "dp/stage_grid.hpp"
+#include "physics/route.hpp"
+#include "physics/train.hpp"
+
+namespace ecorail::dp {
+
+// Bytes per grid node: kControlCount transitions of 32 bytes, two value functions of 9 bytes
+// and the extraction's bookkeeping, rounded up (measured peak RSS is below this,
+// docs/reliability.md).
+inline constexpr double kEngineBytesPerNode = 176.0;
+// Transitions integrated per second on one core (measured, release build): for the time estimate.
+inline constexpr double kTransitionsPerSecond = 4e6;
+
+struct EngineFootprint {
+  double stages = 0.0;
+  double nodes = 0.0;    // upper bound: every stage up to the route's top speed
+  double bytes = 0.0;    // nodes x kEngineBytesPerNode + the speed envelope
+  double build_s = 0.0;  // one core; divide by the threads for a rough wall time
+};
+
+EngineFootprint estimate_engine(const physics::Train& train, const physics::Route& route,
+                                const GridSpec& grid, double envelope_resolution_m);
+
+// Memory this process can have: physical memory, bounded by RLIMIT_AS and RLIMIT_DATA.
+double memory_limit_bytes();
+
+// Thrown when a grid's estimate exceeds memory_limit_bytes() or the node count exceeds what a
+// 32-bit node index holds. what() names the grid steps (ds_m, dv_kmh), the estimate and the limit.
+class ResourceLimitError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws ResourceLimitError if the engine would not fit; otherwise returns the estimate.
+EngineFootprint check_engine_fits(const physics::Train& train, const physics::Route& route,
+                                  const GridSpec& grid, double envelope_resolution_m);
+
+}  // namespace ecorail::dp

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# TTOBench files given to --line and --train: recognised by content (any file name), stops
+# S0, S1, ..., results that follow from the data, and malformed files refused with exit code 2
+# and the file and JSON path named.
+set -uo pipefail
+source "$(dirname "$0")/lib/common.sh" "$@"
+
+cat > track.data <<'JSON'
+{"metadata": {"id": "flat_2km", "library version": "TTOBench v1.4"},
+ "stops": {"unit": "m", "values": [0, 1000, 2000]},
+ "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 60]]},
+ "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
+JSON
+cat > train.data <<'JSON'
+{"metadata": {"id": "hand_train", "library version": "TTOBench v1.4"},
+ "mass": {"unit": "t", "value": 200}, "rho": {"unit": "%", "value": 5},
+ "max traction power": {"unit": "kW", "value": 2000}, "max reg braking power": {"unit": "kW", "value": 2000},
+ "max traction force": {"unit": "kN", "value": 200}, "max reg braking force": {"unit": "kN", "value": 150},
+ "max pn braking force": {"unit": "kN", "value": 50}, "max speed": {"unit": "km/h", "value": 100},
+ "rolling resistance r0": {"unit": "kN", "value": 2}, "rolling resistance r1": {"unit": "kN/(km/h)", "value": 0.02},
+ "rolling resistance r2": {"unit": "kN/(km/h)^2", "value": 0.0005},
+ "efficiency traction": {"unit": "%", "value": 90}, "efficiency reg brake": {"unit": "%", "value": 80}}
+JSON
+
+# Min-time between named stops; both legs of the flat, level track take the same time.
+"$ecorail" min-time --line track.data --train train.data --from S0 --to S1 --json a.json > /dev/null 2> err.txt ||
+  { echo "FAIL: min-time S0 -> S1"; cat err.txt; fail=1; }
+"$ecorail" min-time --line track.data --train train.data --from S2 --to S1 --json b.json > /dev/null 2> err.txt ||
+  { echo "FAIL: min-time S2 -> S1"; cat err.txt; fail=1; }
+python3 - a.json b.json <<'PY' || fail=1
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+assert abs(a["distance_m"] - 1000.0) < 1e-9, a["distance_m"]
+assert abs(a["min_running_time_s"] - b["min_running_time_s"]) < 1e-6, (a, b)
+# Flat out at <= 60 km/h over 1000 m cannot beat 60 s, and a 200 t train is not that slow.
+assert 60.0 < a["min_running_time_s"] < 90.0, a["min_running_time_s"]
+PY
+
+# A solve at +20 %: the regenerated energy counts only the regenerative part of braking,
+# at most 80 % of the braking work.
+t=$(python3 -c 'import json; print(round(1.2 * json.load(open("a.json"))["min_running_time_s"], 3))')
+"$ecorail" solve --line track.data --train train.data --from S0 --to S1 --time "$t" --json s.json --quiet > /dev/null 2> err.txt ||
+  { echo "FAIL: solve"; cat err.txt; fail=1; }
+python3 - s.json "$t" <<'PY' || fail=1
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert abs(s["running_time_s"] - float(sys.argv[2])) < 0.1, s["running_time_s"]
+assert s["regen_energy_kJ"] <= 0.8 * s["braking_energy_kJ"] + 1e-6, s
+PY
+
+# The net objective is refused for a train with a pneumatic brake.
+expect_error "--objective" solve --line track.data --train train.data --from S0 --to S1 --time 100 --objective net
+
+# Malformed files: file and JSON path named.
+sed 's/\[0, 1000, 2000\]/[5, 1000, 2000]/' track.data > bad_stops.json
+expect_error "bad_stops.json: field 'stops.values[0]'" min-time --line bad_stops.json --train train.data --from S0 --to S1
+sed 's/"km\/h", "value": 100/"mph", "value": 100/' train.data > bad_unit.json
+expect_error "bad_unit.json: field 'max speed.unit'" min-time --line track.data --train bad_unit.json --from S0 --to S1
+sed 's/"efficiency traction": {"unit": "%", "value": 90}/"efficiency traction": {"units": {"v": "km\/h"}, "values": [[0, 0.9]]}/' train.data > map.json
+expect_error "field 'efficiency traction'" min-time --line track.data --train map.json --from S0 --to S1
+expect_error "a TTOBench train" min-time --line train.data --train train.data --from S0 --to S1
+echo '{"stops": [' > broken.json
+expect_error "syntax error" min-time --line broken.json --train train.data --from S0 --to S1
+
+# The shared TTOBench copy, when present: ETCS data is said, not dropped in silence.
+tto="$src/../shared/data/ttobench"
+if [ -d "$tto" ]; then
+  "$ecorail" min-time --line "$tto/tracks/CH_StGallen_Wil.json" --train "$tto/trains/CH_Stadler_KISS_SBB.json" \
+    --from S0 --to S1 > out.txt 2> err.txt || { echo "FAIL: St. Gallen - Wil"; cat err.txt; fail=1; }
+  grep -q "note: .*ETCS braking data" err.txt || { echo "FAIL: no ETCS note"; cat err.txt; fail=1; }
+fi
+
+[ "$fail" -eq 0 ] && echo "ttobench: ok"
+exit "$fail"
