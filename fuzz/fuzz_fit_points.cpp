@@ -1,6 +1,7 @@
 // Fit points (speed, force): parsed, and small sets within 100 km/h fitted with Ceres (both
-// forms), where speeds of 1e300 once aborted inside Ceres. A fit may refuse its points
-// (std::invalid_argument: too few distinct speeds); it must not crash.
+// forms), where speeds of 1e300 once aborted inside Ceres. A fit may refuse its points (an
+// InputError naming what they lack, e.g. too few distinct speeds, or std::invalid_argument);
+// it must not crash.
 #include <algorithm>
 #include <stdexcept>
 
@@ -22,6 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!small) return 0;  // the profile search is 0.05 km/h fine: keep each input fast
   try {
     fitting::fit_envelope(points, fitting::EnvelopeFitOptions{});
+  } catch (const data::InputError&) {
   } catch (const std::invalid_argument&) {
   }
   return 0;

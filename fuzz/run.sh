@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every fuzz harness of BUILD for SECONDS each on a corpus seeded from the shipped data
-# (data/contest, data/power_supply.toml, fitting/data, fuzz/seeds, and the TTOBench files of
+# (data/contest, data/contest/power_supply.toml, fitting/data, fuzz/seeds, and the TTOBench files of
 # ../shared/data/ttobench when present). The corpus lives in BUILD/fuzz-corpus/<harness> and grows
 # between runs; crashes are written to BUILD/fuzz-crashes/. Prints one line per harness with its
 # executions and exits non-zero if any harness fails.
@@ -33,11 +33,11 @@ done
 seed fuzz_line_toml "$src/fuzz/seeds/line_toml/two_stations.toml"
 seed fuzz_train_toml "$src/data/contest/train.toml"
 for f in "$src"/data/contest/seed_profile_*.csv "$src"/fuzz/seeds/log/*.csv; do seed fuzz_log "$f"; done
-for f in "$src"/fitting/data/*.csv; do seed fuzz_fit_points "$f"; done
+for f in "$src"/fitting/data/*.csv "$src"/fuzz/seeds/fit_points/*.csv; do seed fuzz_fit_points "$f"; done
 for f in "$src"/fuzz/seeds/policy/*.bin; do seed fuzz_policy "$f"; done
 seed fuzz_csv "$src/data/contest/published_headways_2_1.csv"
 seed fuzz_csv "$src/data/contest/stations.csv"
-seed fuzz_power_supply "$src/data/power_supply.toml"
+seed fuzz_power_supply "$src/data/contest/power_supply.toml"
 shared="$src/../shared/data/ttobench"
 for f in "$shared"/tracks/00_reference.json "$shared"/tracks/00_var_gradient_plus_5.json; do
   seed fuzz_ttobench "$f" 0
