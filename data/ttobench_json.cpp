@@ -95,6 +95,9 @@ nlohmann::json JsonReader::parse(const std::string& text) const {
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(file_, 0, "",
                      "well-formed JSON; got a syntax error at byte " + std::to_string(e.byte));
+  } catch (const nlohmann::json::out_of_range&) {
+    // A number literal beyond double's range (1E1191) is out_of_range, not a parse_error.
+    throw InputError(file_, 0, "", "well-formed JSON with numbers within double's range");
   }
 }
 

@@ -6,28 +6,23 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 namespace ecorail::dp {
 
 namespace {
 std::string long_message(double requested, double maximum) {
-  char buf[240];
-  std::snprintf(buf, sizeof buf,
-                "running time %.2f s is above the longest running time of %.2f s this engine "
-                "solves reliably for this section on this grid",
-                requested, maximum);
-  return buf;
+  return format_text(
+      "running time %.2f s is above the longest running time of %.2f s this engine solves "
+      "reliably for this section on this grid",
+      requested, maximum);
 }
 
 std::string infeasible_message(double requested, double minimum) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "running time %.2f s is below the minimum running time of %.2f s for this "
-                "section (flat-out run)",
-                requested, minimum);
-  return buf;
+  return format_text(
+      "running time %.2f s is below the minimum running time of %.2f s for this section "
+      "(flat-out run)",
+      requested, minimum);
 }
 }  // namespace
 

@@ -43,6 +43,7 @@ for f in "$shared"/tracks/00_reference.json "$shared"/tracks/00_var_gradient_plu
   seed fuzz_ttobench "$f" 0
 done
 for f in "$shared"/trains/*.json; do seed fuzz_ttobench "$f" 1; done
+for f in "$src"/fuzz/seeds/ttobench/*; do seed fuzz_ttobench "$f"; done
 
 failed=0
 for exe in "$build"/fuzz/fuzz_*; do

@@ -30,7 +30,8 @@ NetworkSetup FleetModels::network_setup(int threads) const {
 }
 
 std::unique_ptr<PowerBalance> FleetModels::make_balance() const {
-  if (!profile_) throw std::logic_error("the overlap model has no power balance");
+  if (!profile_)
+    throw std::logic_error("only the power-flow and sections models have a power balance");
   return make_balance(std::vector<const PowerProfile*>(problem_.trains, profile_.get()));
 }
 

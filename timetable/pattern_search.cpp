@@ -286,10 +286,10 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   };
   out.time_limit_reached = false;
   const FleetModels final_models(out.pattern.trip, problem, model);
-  std::shared_ptr<const PowerProfile> common = make_profile(out.pattern.trip, model);
-  std::vector<std::shared_ptr<const PowerProfile>> own(problem.trains, common);
-  balance =
-      final_models.make_balance(std::vector<const PowerProfile*>(problem.trains, common.get()));
+  // Trains start on the common pattern (final_models' profile); own[k] holds train k's profile
+  // once it has one of its own.
+  std::vector<std::shared_ptr<const PowerProfile>> own(problem.trains);
+  balance = final_models.make_balance();
   balance->place_all(out.timetable.evaluation.departures_s);
   out.per_train.assign(problem.trains, best);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
@@ -302,9 +302,9 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
         if ((out.move_limit_reached = out.per_train_moves_accepted >= options.max_per_train_moves))
           break;
         std::vector<FleetPattern> candidates;
+        const FleetPattern current = snapped(out.per_train[k]);
         for (const PatternMove& m : moves) {
-          const std::optional<FleetPattern> p =
-              moved(snapped(out.per_train[k]), m, delta, problem, min_time);
+          const std::optional<FleetPattern> p = moved(current, m, delta, problem, min_time);
           if (p && cache.fetch(*p)) candidates.push_back(*p);
         }
         const int count = static_cast<int>(candidates.size());
@@ -335,7 +335,8 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
       }
     }
   }
-  for (int k = 0; k < problem.trains; ++k) out.per_train_trips.push_back(own[k]->trip());
+  for (int k = 0; k < problem.trains; ++k)
+    out.per_train_trips.push_back(own[k] ? own[k]->trip() : final_models.profile().trip());
   out.timetable.evaluation = final_models.evaluation_of(*balance);
   HeadwayOptimiserSummary& s = out.timetable.summary;
   s.used_regen_J = out.timetable.evaluation.total.used_regen_J;

@@ -241,6 +241,23 @@ TEST(TtobenchMalformed, EachErrorNamesItsJsonPath) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("syntax error at byte"), std::string::npos) << e.what();
   }
+  // A number beyond double's range: nlohmann reports it as out_of_range, not a parse error;
+  // found by fuzz_ttobench (fuzz/seeds/ttobench/number_overflow.json).
+  for (const std::string text : {"1E1191", "{\"stops\": [1E400]}"}) {
+    for (const bool as_track : {true, false}) {
+      try {
+        if (as_track) {
+          track(text);
+        } else {
+          train_from_ttobench(text, "train.json");
+        }
+        ADD_FAILURE() << "an overflowing number read: " << text;
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("within double's range"), std::string::npos)
+            << e.what();
+      }
+    }
+  }
 }
 
 }  // namespace
