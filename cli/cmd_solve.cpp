@@ -102,8 +102,8 @@ void run_solve(const SolveArgs& a) {
   print_regimes(out, solution.regimes);
   std::fflush(out);
   // The per-second table is read from the run laid out as a trip.
-  const output::Timeline timeline = output::trip_timeline(
-      physics::Trip({{&p.route, &solution.run.sim, 0.0}}, 0.0, p.train.regen_efficiency));
+  const physics::Trip trip({{&p.route, &solution.run.sim, 0.0}}, 0.0, p.train.regen_efficiency);
+  const output::Timeline timeline = output::trip_timeline(trip);
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
@@ -113,7 +113,7 @@ void run_solve(const SolveArgs& a) {
                                         {{"time_s", a.time_s},
                                          {"min_regime_m", options.min_regime.min_length_m},
                                          {"min_regime_s", options.min_regime.min_duration_s}});
-  write_outputs(a.outputs, report, timeline, title, summary_rows(s));
+  write_outputs(a.outputs, report, timeline, title, summary_rows(s), &trip);
 }
 
 }  // namespace
@@ -146,6 +146,7 @@ void add_solve_command(CLI::App& app) {
       ->check(CLI::IsMember({"on", "off", "auto"}))
       ->capture_default_str();
   add_output_options(cmd, args->outputs);
+  add_gtfs_options(cmd, args->outputs);
   cmd->callback([args] { run_solve(*args); });
 }
 

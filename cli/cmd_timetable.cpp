@@ -65,6 +65,7 @@ struct TimetableArgs {
   std::string power_supply, voltage_plot;
   double voltage_at_s = 3600.0;
   CLI::Option* step_option = nullptr;  // whether --step was given (the network's default differs)
+  OutputOptions gtfs;                  // --gtfs DIR, --gtfs-start (its other fields unused)
 };
 
 [[noreturn]] void bad(const std::string& flag, const std::string& expected) {
@@ -236,6 +237,7 @@ void add_fleet_options(CLI::App* cmd, TimetableArgs& a) {
   cmd->add_flag("--quiet", a.quiet, "no progress on stderr");
   cmd->add_flag("--full-report", a.full_report, "print the solver's full report");
   add_service_options(cmd, a.service);
+  add_gtfs_options(cmd, a.gtfs);
 }
 
 void print_energy(const timetable::FleetEvaluation& ev, const char* what) {
@@ -284,12 +286,15 @@ FleetSetup setup(const TimetableArgs& a) {
   FleetSetup s;
   s.problem = fleet_problem(a);
   s.model = model_options(a);
-  check_output_targets({{"--json", a.json, false},
-                        {"--csv", a.csv, false},
-                        {"--xlsx", a.xlsx, false},
-                        {"--diagram", a.diagram, true},
-                        {"--power-plot", a.power_plot, true},
-                        {"--voltage-plot", a.voltage_plot, true}});
+  std::vector<OutputTarget> targets = {{"--json", a.json, false},
+                                       {"--csv", a.csv, false},
+                                       {"--xlsx", a.xlsx, false},
+                                       {"--diagram", a.diagram, true},
+                                       {"--power-plot", a.power_plot, true},
+                                       {"--voltage-plot", a.voltage_plot, true}};
+  const std::vector<OutputTarget> gtfs = gtfs_targets(a.gtfs);
+  targets.insert(targets.end(), gtfs.begin(), gtfs.end());  // no GTFS file is another's path
+  check_output_targets(targets);
   check_service_args(a.service);
   if (!a.voltage_plot.empty() && s.model.model != timetable::EnergyModel::Network)
     bad("--voltage-plot", "--model network (only the network model has line voltages)");
@@ -352,6 +357,17 @@ void write_fleet_outputs(const TimetableArgs& a, const FleetSetup& s,
   const auto service_run =
       run_service_check(a.service, *s.library, s.pattern.pattern, ev.departures_s, energy, batch);
   if (!a.json.empty()) batch.add(a.json, [&](std::ostream& o) { o << energy.dump(2) << "\n"; });
+  if (!a.gtfs.gtfs.empty()) {
+    // trip_id "train-001" ...: zero-padded so that the trips sort in departure order.
+    const int width = static_cast<int>(std::to_string(ev.departures_s.size()).size());
+    std::vector<std::pair<std::string, physics::Trip>> trips;
+    for (std::size_t k = 0; k < ev.departures_s.size(); ++k) {
+      std::string number = std::to_string(k + 1);
+      number.insert(0, width - number.size(), '0');
+      trips.emplace_back("train-" + number, tt.train_trip(k));
+    }
+    add_gtfs_outputs(batch, a.gtfs, trips);
+  }
   if (!a.csv.empty())
     batch.add(a.csv, [&](std::ostream& o) { output::write_timetable_csv(o, tt); });
   if (!a.xlsx.empty())

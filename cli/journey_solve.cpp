@@ -172,7 +172,8 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
                                  {"running_time_s", sol.running_time_s},
                                  {"traction_energy_kJ", units::J_to_kJ(sol.traction_work_J)},
                                  {"regen_energy_kJ", units::J_to_kJ(sol.regen_J)}};
-  write_outputs(outputs, report, timeline, title, summary);
+  const physics::Trip trip = dp::journey_trip(sol, routes, 0.0, p.train.regen_efficiency);
+  write_outputs(outputs, report, timeline, title, summary, &trip);
 }
 
 }  // namespace ecorail::cli

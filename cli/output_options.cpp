@@ -7,6 +7,7 @@
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "output/gnuplot.hpp"
+#include "output/gtfs_writer.hpp"
 #include "output/provenance.hpp"
 #include "output/run_json.hpp"
 #include "output/speed_plot.hpp"
@@ -62,6 +63,70 @@ void add_output_options(CLI::App* cmd, OutputOptions& o) {
       ->capture_default_str();
 }
 
+void add_gtfs_options(CLI::App* cmd, OutputOptions& o) {
+  cmd->add_option("--gtfs", o.gtfs,
+                  "write the timetable as GTFS into this existing directory: stops.txt, "
+                  "routes.txt, trips.txt, stop_times.txt");
+  cmd->add_option("--gtfs-start", o.gtfs_start,
+                  "clock time of t = 0 in the GTFS files (HH:MM:SS or seconds)")
+      ->capture_default_str();
+}
+
+std::vector<OutputTarget> gtfs_targets(const OutputOptions& o) {
+  const std::string& dir = o.gtfs;
+  if (dir.empty()) return {};
+  gtfs_start_s(o.gtfs_start);
+  std::error_code ec;
+  if (data::is_stdout_path(dir) || !std::filesystem::is_directory(dir, ec)) {
+    throw data::InputError("command line", 0, "--gtfs",
+                           "an existing directory for the four GTFS files; got '" + dir + "'");
+  }
+  std::vector<OutputTarget> targets;
+  for (const char* name : {"stops.txt", "routes.txt", "trips.txt", "stop_times.txt"}) {
+    targets.push_back({"--gtfs", (std::filesystem::path(dir) / name).string(), false});
+  }
+  return targets;
+}
+
+double gtfs_start_s(const std::string& text) {
+  const auto fail = [&] {
+    return data::InputError(
+        "command line", 0, "--gtfs-start",
+        "a clock time HH:MM:SS, HH:MM or a number of seconds >= 0; got '" + text + "'");
+  };
+  double parts[3] = {0.0, 0.0, 0.0};
+  int count = 0;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', begin);
+    const std::string part = text.substr(begin, colon - begin);
+    if (count == 3 || part.empty() || part.find_first_not_of("0123456789.") != std::string::npos)
+      throw fail();
+    parts[count++] = std::stod(part);
+    if (colon == std::string::npos) break;
+    begin = colon + 1;
+  }
+  if (count == 1) return parts[0];
+  if (parts[1] >= 60.0 || parts[2] >= 60.0) throw fail();
+  return count == 2 ? parts[0] * 3600.0 + parts[1] * 60.0
+                    : parts[0] * 3600.0 + parts[1] * 60.0 + parts[2];
+}
+
+void add_gtfs_outputs(data::OutputBatch& batch, const OutputOptions& o,
+                      const std::vector<std::pair<std::string, physics::Trip>>& trips) {
+  if (o.gtfs.empty()) return;
+  const double start_s = gtfs_start_s(o.gtfs_start);
+  std::vector<output::GtfsRow> rows;
+  for (const auto& [id, trip] : trips) {
+    for (output::GtfsRow row : output::gtfs_rows_of_trip(trip, id)) {
+      row.arrival_s += start_s;
+      row.departure_s += start_s;
+      rows.push_back(std::move(row));
+    }
+  }
+  output::add_gtfs_files(batch, o.gtfs, rows);
+}
+
 void check_output_targets(const std::vector<OutputTarget>& targets) {
   std::vector<std::pair<std::filesystem::path, std::string>> seen;
   std::vector<output::PlotFormat> checked_formats;  // gnuplot is asked once per format
@@ -98,10 +163,13 @@ void check_output_targets(const std::vector<OutputTarget>& targets) {
 }
 
 void check_output_targets(const OutputOptions& o) {
-  check_output_targets({{"--json", o.json, false},
-                        {"--csv", o.csv, false},
-                        {"--xlsx", o.xlsx, false},
-                        {"--plot", o.plot, true}});
+  std::vector<OutputTarget> targets = {{"--json", o.json, false},
+                                       {"--csv", o.csv, false},
+                                       {"--xlsx", o.xlsx, false},
+                                       {"--plot", o.plot, true}};
+  const std::vector<OutputTarget> gtfs = gtfs_targets(o);
+  targets.insert(targets.end(), gtfs.begin(), gtfs.end());  // no GTFS file is another's path
+  check_output_targets(targets);
   if (data::is_stdout_path(o.xlsx)) {
     throw data::InputError("command line", 0, "--xlsx", "a file (XLSX is not written to '-')");
   }
@@ -121,8 +189,12 @@ nlohmann::json run_provenance(const Problem& problem, const ProblemOptions& opti
 
 void write_outputs(const OutputOptions& o, const nlohmann::json& report,
                    const output::Timeline& timeline, const std::string& title,
-                   const output::SummaryRows& summary) {
+                   const output::SummaryRows& summary, const physics::Trip* trip) {
   data::OutputBatch batch;
+  if (!o.gtfs.empty()) {
+    if (!trip) throw std::logic_error("--gtfs without a trip to write");
+    add_gtfs_outputs(batch, o, {{"ecorail-1", *trip}});
+  }
   if (!o.json.empty()) {
     batch.add(o.json, [&](std::ostream& out) { output::write_json(out, report); });
   }

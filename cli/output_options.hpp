@@ -9,17 +9,24 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/problem_options.hpp"
+#include "data/atomic_file.hpp"
 #include "output/profile_writers.hpp"
 #include "output/timeline.hpp"
+#include "physics/trip.hpp"
 
 namespace ecorail::cli {
 
 struct OutputOptions {
   std::string json, csv, xlsx, plot;
   std::string plot_x = "distance";  // distance or time
+  // GTFS export (add_gtfs_options; commands that make a timetable): the directory that gets
+  // stops.txt, routes.txt, trips.txt and stop_times.txt, and the clock time of t = 0.
+  std::string gtfs;
+  std::string gtfs_start = "00:00:00";
 };
 
 // One output of a command, for check_output_targets: its flag, its path (empty: not asked
@@ -31,9 +38,21 @@ struct OutputTarget {
 };
 
 void add_output_options(CLI::App* cmd, OutputOptions& o);
+// --gtfs DIR and --gtfs-start HH:MM:SS (or seconds) for commands whose result is a timetable.
+void add_gtfs_options(CLI::App* cmd, OutputOptions& o);
 // InputError naming the flag for the first unsuitable target (see the header summary).
 void check_output_targets(const std::vector<OutputTarget>& targets);
 void check_output_targets(const OutputOptions& o);
+// The four GTFS files of --gtfs DIR as output targets (none when DIR is empty); InputError
+// naming --gtfs when DIR is not an existing directory, or --gtfs-start when it does not parse.
+std::vector<OutputTarget> gtfs_targets(const OutputOptions& o);
+// --gtfs-start in seconds past midnight: "HH:MM:SS", "HH:MM" or a number of seconds, at least 0;
+// InputError naming --gtfs-start otherwise.
+double gtfs_start_s(const std::string& text);
+// Adds the GTFS files of o.gtfs to batch (nothing when o.gtfs is empty): trips as given, every
+// time shifted by --gtfs-start.
+void add_gtfs_outputs(data::OutputBatch& batch, const OutputOptions& o,
+                      const std::vector<std::pair<std::string, physics::Trip>>& trips);
 // The "provenance" of a report (output/provenance.hpp): program, line and train with their
 // checksums, grid, and the options that shape the result (--threads is left out: it does not
 // change the result, and the report states it under "threads"). extra_options adds the
@@ -42,8 +61,9 @@ nlohmann::json run_provenance(const Problem& problem, const ProblemOptions& opti
                               const nlohmann::json& extra_options = nlohmann::json::object());
 // Writes every requested output, all or none. The plot names the stations from the report's
 // "stops" (or "from" and "to") and the objective from its "objective" (or its provenance).
+// trip: the run as a timetable, for --gtfs (required when o.gtfs is set).
 void write_outputs(const OutputOptions& o, const nlohmann::json& report,
                    const output::Timeline& timeline, const std::string& title,
-                   const output::SummaryRows& summary);
+                   const output::SummaryRows& summary, const physics::Trip* trip = nullptr);
 
 }  // namespace ecorail::cli
