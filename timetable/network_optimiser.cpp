@@ -191,7 +191,10 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   out.headways_s = headways_from_departures(t);
   out.evaluation = models.evaluate(t);
   s.method = "annealing (" + std::to_string(runs) + " runs) and polish on the network model";
-  s.used_regen_J = out.evaluation.total.used_regen_J;
+  // The regenerated energy the line took (the fleet total's "used" is traction minus substation
+  // energy, which auxiliaries and line losses make negative on the network).
+  s.used_regen_J = out.evaluation.network ? out.evaluation.network->used_regen_J
+                                          : out.evaluation.total.used_regen_J;
   s.substation_J = out.evaluation.total.substation_J();
   s.bound_used_regen_J = NAN;  // no bound for the network model
   s.gap_fraction = NAN;

@@ -86,6 +86,13 @@ u, o = json.load(open("u.json")), json.load(open("o.json"))
 assert o["model"] == "network"
 assert o["substation_energy_kJ"] <= u["substation_energy_kJ"] + 1e-6, (o["substation_energy_kJ"], u["substation_energy_kJ"])
 assert sum(o["headways_s"]) == 1000 and all(150 <= h <= 250 for h in o["headways_s"])
+# The solver's summary line names the regenerated energy the line took, as the JSON does (not
+# traction minus substation energy, which auxiliaries and losses make negative).
+import re
+line = [l for l in open("o.txt") if "annealing" in l and "used regen" in l]
+assert line, open("o.txt").read()
+used = float(re.search(r"used regen (-?[0-9.]+) kJ", line[0]).group(1))
+assert abs(used - o["used_regen_kJ"]) <= 0.05 + 1e-9, (used, o["used_regen_kJ"])
 PY
 
 [ "$fail" -eq 0 ] && echo "power_network: ok"
