@@ -23,4 +23,15 @@ assert abs(r["cost_kJ"] - (m["traction_input_energy_kJ"] - b["traction_input_ene
 assert -0.001 * b["traction_input_energy_kJ"] < r["cost_kJ"] < 0.005 * b["traction_input_energy_kJ"], r
 assert all(s["end_m"] - s["start_m"] >= 20 for s in m["regimes"][:-1]), m["regimes"]
 PY
+
+# A minimum regime longer than the section: the merged run misses its time. The warning that
+# says so comes with the brief report (no --full-report), the run exits non-zero and writes
+# nothing.
+"$ecorail" solve --from A6 --to A7 --time 110 --quiet --min-regime-m 2000 --json long.json \
+  > long.txt 2> long.err
+code=$?
+[ "$code" -ne 0 ] || { echo "FAIL: a run that misses its time exited 0"; fail=1; }
+grep -q "^  warning: running time .* misses the target 110.000 s" long.txt ||
+  { echo "FAIL: no warning with the brief report"; cat long.txt; fail=1; }
+[ ! -e long.json ] || { echo "FAIL: output written for a failed run"; fail=1; }
 exit $fail
