@@ -9,6 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/output_options.hpp"
+#include "cli/progress.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
@@ -23,6 +24,7 @@ namespace ecorail::cli {
 namespace {
 
 struct CalibrateArgs {
+  bool quiet = false;
   std::vector<std::string> logs;
   std::string train;
   std::string out;
@@ -93,7 +95,11 @@ void run_calibrate(const CalibrateArgs& a) {
   const physics::Train base = a.train.empty() ? data::default_train() : data::load_train(a.train);
   std::vector<Log> logs;
   for (const auto& path : a.logs) logs.push_back(read_log(path));
-  const Summary s = calibrate(logs, base, o);
+  const Summary s = [&] {
+    Progress progress("ecorail calibrate", a.quiet);  // cleared before the report
+    o.progress = progress.callback();
+    return calibrate(logs, base, o);
+  }();
   report << (a.brief ? s.BriefReport() : s.FullReport());
   // The report above shows how the fit ended; a result that did not converge is an error and
   // neither the train nor the JSON record is written.
@@ -161,6 +167,7 @@ void add_calibrate_command(CLI::App& app) {
                   "is an error and nothing is written");
   cmd->add_option("--threads", args->threads, "threads for Ceres (default 1)");
   cmd->add_flag("--brief", args->brief, "print the one-line report only");
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->add_flag("--no-accel-limits", args->no_accel_limits,
                 "do not apply the base train's acceleration limits to the logged forces");
   cmd->callback([args] { run_calibrate(*args); });

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
 #include "cli/problem_options.hpp"
+#include "cli/progress.hpp"
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
@@ -30,6 +31,7 @@ struct PolicyArgs {
   std::string out, csv, inspect;
   std::vector<double> ladder_s;
   std::vector<std::string> at;
+  bool quiet = false;
 };
 
 void check_target_dir(const std::string& path, const char* option) {
@@ -80,8 +82,12 @@ void run_write(const PolicyArgs& a) {
 
   const Problem p = load_problem(a.problem);
   const dp::SectionEngine engine(p.train, p.route, engine_opts);
-  const policy::PolicyTable table = policy::build_policy_ladder(
-      engine, {p.line.name, p.line.checksum(), data::train_checksum(p.train)}, ladder);
+  const policy::PolicyTable table = [&] {
+    Progress progress("ecorail policy", a.quiet);  // cleared before the table is printed
+    ladder.progress = progress.callback();
+    return policy::build_policy_ladder(
+        engine, {p.line.name, p.line.checksum(), data::train_checksum(p.train)}, ladder);
+  }();
   const std::string bytes = policy::encode_policy(table);
   data::write_atomically(a.out, [&](std::ostream& out) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -204,6 +210,7 @@ void add_policy_command(CLI::App& app) {
   auto* inspect = cmd->add_option("--inspect", args->inspect,
                                   "read a policy table, check it against --line/--train, print it");
   inspect->excludes(time)->excludes(out)->excludes(csv)->excludes(ladder);
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->add_option("--at", args->at, "with --inspect: advice at S_M,V_KMH (repeatable)")
       ->needs(inspect);
   cmd->callback([args] {

@@ -126,6 +126,7 @@ Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
   setup.robust_passes = options.robust_passes;
   setup.max_iterations = options.max_iterations;
   setup.num_threads = options.num_threads;
+  setup.progress = options.progress;
   for (int p = 0; p < kParamCount; ++p) {
     s.fitted[static_cast<std::size_t>(p)] = !setup.fixed[static_cast<std::size_t>(p)];
   }
@@ -134,11 +135,13 @@ Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
 
   if (options.method != Method::OutputError) {
     auto ee = make_equation_error(s.data, k);
+    setup.progress_stage = "equation-error pass";
     const FitResult fit = run_fit(*ee, setup);
     s.results.push_back(summarise(Method::EquationError, fit, setup));
   }
   if (options.method != Method::EquationError) {
     FitSetup oe_setup = setup;
+    oe_setup.progress_stage = "output-error pass";
     // Multiple shooting starts best from the equation-error estimate when there is one.
     if (!s.results.empty()) oe_setup.initial = s.results.back().fit.value;
     auto oe = make_output_error(s.data, k, options.output_error);

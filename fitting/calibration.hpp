@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "dp/progress.hpp"
 #include "fitting/formulation.hpp"
 #include "fitting/identifiability.hpp"
 #include "fitting/log_plausibility.hpp"
@@ -47,6 +48,8 @@ struct CalibrationOptions {
   IdentifiabilityOptions identifiability;
   int max_iterations = 100;
   int num_threads = 1;
+  // Called with ("equation-error pass" or "output-error pass", pass, passes) as the fits run.
+  dp::ProgressFn progress;
 };
 
 struct ParameterEstimate {

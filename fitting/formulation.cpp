@@ -42,6 +42,22 @@ ceres::Solver::Options solver_options(const Formulation& f, const FitSetup& setu
   return o;
 }
 
+// Reports (stage, pass, passes) at every Ceres iteration, so that a long pass keeps the
+// progress line's clock moving.
+class PassProgress : public ceres::IterationCallback {
+ public:
+  PassProgress(const FitSetup& setup, int pass, int passes)
+      : setup_(setup), pass_(pass), passes_(passes) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    dp::report_progress(setup_.progress, setup_.progress_stage, pass_, passes_);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const FitSetup& setup_;
+  int pass_, passes_;
+};
+
 }  // namespace
 
 FitResult run_fit(Formulation& f, const FitSetup& setup) {
@@ -85,7 +101,14 @@ FitResult run_fit(Formulation& f, const FitSetup& setup) {
     problem->AddParameterBlock(params.data(), kParamCount);
     f.add_blocks(*problem, params.data(), sigma, loss.get());
     configure_params(*problem, params.data(), setup);
-    ceres::Solve(solver_options(f, setup), problem.get(), &summary);
+    ceres::Solver::Options so = solver_options(f, setup);
+    PassProgress pass_progress(setup, pass, passes);
+    if (setup.progress) {
+      so.callbacks.push_back(&pass_progress);
+      so.update_state_every_iteration = false;
+    }
+    ceres::Solve(so, problem.get(), &summary);
+    dp::report_progress(setup.progress, setup.progress_stage, pass + 1, passes);
     if (pass == 0) out.initial_cost = summary.initial_cost;
     out.iterations += static_cast<int>(summary.iterations.size()) - 1;
   }

@@ -12,6 +12,7 @@
 
 #include <ceres/ceres.h>
 
+#include "dp/progress.hpp"
 #include "fitting/log_prep.hpp"
 #include "fitting/motion_model.hpp"
 #include "fitting/parameters.hpp"
@@ -32,6 +33,9 @@ struct FitSetup {
   int robust_passes = 2;
   int max_iterations = 100;
   int num_threads = 1;
+  // Called with (progress_stage, pass, passes) at every Ceres iteration and after each pass.
+  dp::ProgressFn progress;
+  const char* progress_stage = "fit";
 };
 
 struct DiscountedRow {

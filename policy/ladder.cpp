@@ -36,6 +36,8 @@ PolicyTable build_policy_ladder(const dp::SectionEngine& engine, const PolicyIde
   const dp::ThreadScope threads(engine.options().threads);  // the layers' parallel parts
   PolicyTable table = make_policy_table(engine, identity.line_name, identity.line_checksum,
                                         identity.train_checksum);
+  const int layers = static_cast<int>(options.time_offsets_s.size());
+  dp::report_progress(options.progress, "layer", 0, layers);
   for (double offset : options.time_offsets_s) {
     const double target = options.nominal_time_s + offset;
     dp::TimeSearchResult found;
@@ -48,6 +50,7 @@ PolicyTable build_policy_ladder(const dp::SectionEngine& engine, const PolicyIde
     layer.time_offset_s = offset;
     layer.target_time_s = target;
     table.layers.push_back(std::move(layer));
+    dp::report_progress(options.progress, "layer", static_cast<int>(table.layers.size()), layers);
   }
   return table;
 }

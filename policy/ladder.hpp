@@ -19,6 +19,8 @@ struct PolicyLadderOptions {
   double nominal_time_s = 0.0;              // running time of the layer with offset 0
   std::vector<double> time_offsets_s{0.0};  // one layer per nominal_time_s + offset
   dp::TimeSearchOptions search;
+  // Called with ("layer", layers done, layers) as the ladder is built (cli/progress.hpp).
+  dp::ProgressFn progress;
   // Checks every field (offsets distinct, each leaving a positive running time); on failure
   // writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;

@@ -15,6 +15,19 @@ if command -v script > /dev/null; then
   script -qec "${run[*]} --quiet 2>&1 >/dev/null" /dev/null > quiet.txt ||
     { echo "FAIL: frontier --quiet on a tty"; fail=1; }
   if grep -q "ecorail frontier:" quiet.txt; then echo "FAIL: progress despite --quiet"; fail=1; fi
+  # Policy ladders count layers; calibrations count the passes of each fit.
+  script -qec "$ecorail policy --from A6 --to A7 --time 110 --out p.bin --lambda-ladder -5,0 2>&1 >/dev/null" \
+    /dev/null > policy.txt || { echo "FAIL: policy on a tty"; fail=1; }
+  grep -q "ecorail policy: layer 1/2" policy.txt || { echo "FAIL: no ladder progress"; cat -v policy.txt; fail=1; }
+  data="$src/data/contest"
+  script -qec "$ecorail calibrate --log $data/seed_profile_A6_A7_110s.csv --log $data/seed_profile_A6_A8_220s.csv --out c.toml 2>&1 >/dev/null" \
+    /dev/null > calibrate.txt || { echo "FAIL: calibrate on a tty"; fail=1; }
+  grep -q "ecorail calibrate: equation-error pass [0-9]/[0-9]" calibrate.txt &&
+    grep -q "ecorail calibrate: output-error pass [0-9]/[0-9]" calibrate.txt ||
+    { echo "FAIL: no calibration progress"; cat -v calibrate.txt; fail=1; }
+  script -qec "$ecorail calibrate --quiet --log $data/seed_profile_A6_A7_110s.csv --log $data/seed_profile_A6_A8_220s.csv --out c2.toml 2>&1 >/dev/null" \
+    /dev/null > calibrate_quiet.txt || { echo "FAIL: calibrate --quiet on a tty"; fail=1; }
+  if grep -q "ecorail calibrate:" calibrate_quiet.txt; then echo "FAIL: calibration progress despite --quiet"; fail=1; fi
 else
   echo "note: util-linux script is missing; the terminal half is skipped"
 fi
