@@ -34,8 +34,14 @@ struct EngineFootprint {
 EngineFootprint estimate_engine(const physics::Train& train, const physics::Route& route,
                                 const GridSpec& grid, double envelope_resolution_m);
 
-// Memory this process can have: physical memory, bounded by RLIMIT_AS and RLIMIT_DATA.
+// Memory this process can have: physical memory, bounded by RLIMIT_AS and RLIMIT_DATA and by
+// the memory limit of its control group (a container's limit), cgroup_memory_limit_bytes.
 double memory_limit_bytes();
+// The memory limit of this process's control group, read under root ("/" normally; a test
+// passes a fake tree): cgroup v2 memory.max and v1 memory.limit_in_bytes, in the process's own
+// group (/proc/self/cgroup) and at the hierarchy's root, the smallest found; infinity when
+// there is none or it is "max" (v1 writes no limit as a number near 2^63).
+double cgroup_memory_limit_bytes(const std::string& root = "/");
 
 // Thrown when a grid's estimate exceeds memory_limit_bytes() or the node count exceeds what a
 // 32-bit node index holds. what() names the grid steps (ds_m, dv_kmh), the estimate and the limit.
