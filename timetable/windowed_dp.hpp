@@ -30,9 +30,11 @@ HeadwayChoice maximise_windowed(const FleetProblem& problem, const WindowedValue
 
 // sum_k value(h_k) - sum_k penalty(h_k, h_{k+1}), penalty[a * m + b] >= 0 for consecutive
 // headways any_min + a, any_min + b (m = any_max - any_min + 1). The state also carries the last
-// headway; the inner maximum stops as soon as no candidate can win (penalty >= 0).
+// headway; the inner maximum stops as soon as no candidate can win (penalty >= 0). Only the
+// states reachable both ways are laid out (one 2-byte back pointer each; values two layers at a
+// time); std::length_error when they exceed max_states or half the memory the process can have.
 HeadwayChoice maximise_windowed_chain(const FleetProblem& problem, const WindowedValue& value,
                                       const std::vector<double>& penalty,
-                                      long max_states = 400'000'000);
+                                      long max_states = 3'000'000'000);
 
 }  // namespace ecorail::timetable

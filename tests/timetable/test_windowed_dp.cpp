@@ -124,6 +124,33 @@ TEST(WindowedDp, ChainEqualsBruteForce) {
   }
 }
 
+// Beyond brute force: with no penalty the chain DP must find the separable DP's optimum (a
+// second algorithm) on a day with two windows and wide ranges, where its layered layout
+// (states reachable from both ends, ranges of last headways) is exercised.
+TEST(WindowedDp, ChainWithoutPenaltyEqualsSeparableOnALargerDay) {
+  FleetProblem p;
+  p.trains = 60;
+  p.span_s = 6000;
+  p.headway_min_s = 100;
+  p.headway_max_s = 160;
+  p.peak_headway_min_s = 40;
+  p.peak_headway_max_s = 60;
+  p.peak_windows = {{1000, 1800}, {4000, 4600}};
+  ASSERT_TRUE(WindowedReach(p).feasible());
+  std::mt19937_64 rng(11);
+  const int m = p.any_headway_max_s() - p.any_headway_min_s() + 1;
+  for (int trial = 0; trial < 3; ++trial) {
+    const WindowedValue v = random_values(p, rng);
+    const HeadwayChoice sep = maximise_windowed(p, v);
+    const HeadwayChoice chain =
+        maximise_windowed_chain(p, v, std::vector<double>(static_cast<std::size_t>(m) * m, 0.0));
+    const std::vector<int> t = departures_from_headways(chain.headways_s);
+    EXPECT_EQ(departures_problem(p, t), "");
+    EXPECT_NEAR(chain.value, sep.value, 1e-9);
+    EXPECT_NEAR(value_of(p, v, t), sep.value, 1e-9);
+  }
+}
+
 TEST(WindowedDp, TooFewTrainsForTheWindowsIsAnError) {
   // The reference day: 240 trains fit; 100 cannot fill the peak windows at 150 s at most.
   FleetProblem p;
