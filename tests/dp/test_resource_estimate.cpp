@@ -5,14 +5,13 @@
 // options before any solve.
 #include <gtest/gtest.h>
 
-#include <stdlib.h>
-
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "../output/temp_dir_test.hpp"
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
@@ -96,41 +95,34 @@ namespace ecorail::dp {
 namespace {
 
 // A fake root with /proc/self/cgroup and the limit files of a container.
-class CgroupLimit : public ::testing::Test {
+class CgroupLimit : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    char templ[] = "/tmp/ecorail-cgroup-XXXXXX";
-    ASSERT_NE(mkdtemp(templ), nullptr);
-    root_ = templ;
-  }
-  void TearDown() override { std::filesystem::remove_all(root_); }
   void write(const std::string& path, const std::string& text) {
-    std::filesystem::create_directories((root_ / path).parent_path());
-    std::ofstream(root_ / path) << text;
+    std::filesystem::create_directories((dir_ / path).parent_path());
+    std::ofstream(dir_ / path) << text;
   }
-  std::filesystem::path root_;
 };
 
 TEST_F(CgroupLimit, V2GroupLimitIsRead) {
   write("proc/self/cgroup", "0::/job/42\n");
   write("sys/fs/cgroup/memory.max", "max\n");
   write("sys/fs/cgroup/job/42/memory.max", "1073741824\n");
-  EXPECT_EQ(cgroup_memory_limit_bytes(root_.string()), 1073741824.0);
+  EXPECT_EQ(cgroup_memory_limit_bytes(dir_.string()), 1073741824.0);
 }
 
 TEST_F(CgroupLimit, V1LimitAtTheMountRootWhenTheGroupIsNotVisible) {
   // As in a container: the group's path is not under the namespaced mount; its root has it.
   write("proc/self/cgroup", "5:cpu:/\n4:memory:/process_api/abc\n0::/\n");
   write("sys/fs/cgroup/memory/memory.limit_in_bytes", "2147483648\n");
-  EXPECT_EQ(cgroup_memory_limit_bytes(root_.string()), 2147483648.0);
+  EXPECT_EQ(cgroup_memory_limit_bytes(dir_.string()), 2147483648.0);
 }
 
 TEST_F(CgroupLimit, NoLimitIsInfinite) {
   write("proc/self/cgroup", "4:memory:/\n0::/\n");
   write("sys/fs/cgroup/memory/memory.limit_in_bytes", "9223372036854771712\n");
   write("sys/fs/cgroup/memory.max", "max\n");
-  EXPECT_TRUE(std::isinf(cgroup_memory_limit_bytes(root_.string())));
-  EXPECT_TRUE(std::isinf(cgroup_memory_limit_bytes((root_ / "nothing-here").string())));
+  EXPECT_TRUE(std::isinf(cgroup_memory_limit_bytes(dir_.string())));
+  EXPECT_TRUE(std::isinf(cgroup_memory_limit_bytes((dir_ / "nothing-here").string())));
   // The process's own limit is never above what the machine has.
   EXPECT_LE(memory_limit_bytes(), cgroup_memory_limit_bytes());
 }
