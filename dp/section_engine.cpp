@@ -62,8 +62,13 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
 
 physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program,
                                                   const StartState& start) const {
+  return simulate(program, start, options_.resim_step_m);
+}
+
+physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program,
+                                                  const StartState& start, double step_m) const {
   physics::SimulationOptions opt;
-  opt.step_m = options_.resim_step_m;
+  opt.step_m = step_m;
   opt.start_position_m = start.position_m;
   opt.start_speed_ms = start.speed_ms;
   return physics::simulate(motion_, program, opt);
@@ -82,6 +87,10 @@ ValueFunction SectionEngine::sweep(double lambda) const {
 }
 
 LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
+  return run(lambda, start, options_.resim_step_m);
+}
+
+LambdaRun SectionEngine::run(double lambda, const StartState& start, double resim_step_m) const {
   const ValueFunction value = sweep(lambda);
   ExtractionSettings settings;
   settings.start_position_m = start.position_m;
@@ -92,12 +101,12 @@ LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
   out.lambda = lambda;
   out.start = start;
   out.program = extract_program(motion_, grid_, value, options_.objective, settings);
-  out.sim = simulate(out.program, start);
+  out.sim = simulate(out.program, start, resim_step_m);
   if (options_.cruise_as_hold) {
     physics::ControlProgram held = hold_cruising(out.program, out.sim);
     if (held.size() < out.program.size()) {
       out.program = std::move(held);
-      out.sim = simulate(out.program, start);
+      out.sim = simulate(out.program, start, resim_step_m);
     }
   }
   out.cost_J = energy_cost_J(out.sim);
@@ -105,7 +114,13 @@ LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
 }
 
 physics::SimulationResult SectionEngine::min_time_run(const StartState& start) const {
-  return simulate({{start.position_m, physics::Control::MaxTraction}}, start);
+  if (!(start.position_m == 0.0 && start.speed_ms == 0.0)) {
+    return simulate({{start.position_m, physics::Control::MaxTraction}}, start);
+  }
+  std::call_once(flat_out_once_, [&] {
+    flat_out_ = simulate({{start.position_m, physics::Control::MaxTraction}}, start);
+  });
+  return flat_out_;
 }
 
 }  // namespace ecorail::dp

@@ -53,6 +53,9 @@ bool TimeSearchOptions::IsValid(std::string* error) const {
   if (!(bracket_factor > 1.0 && std::isfinite(bracket_factor))) {
     return fail("search bracket_factor must be a finite factor > 1");
   }
+  if (!(search_step_m >= 0.0 && search_step_m <= 10.0)) {
+    return fail("search search_step_m must be in [0, 10] m");
+  }
   return true;
 }
 
@@ -130,24 +133,38 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
     return run_arrives(run.sim) ? std::abs(run.sim.running_time_s - target) : INFINITY;
   };
   auto error_of_best = [&] { return have_best ? error_of(out.run) : INFINITY; };
-  auto consider = [&](LambdaRun run) {
+  // The bracket is found and narrowed on runs re-simulated at the search step (coarse); the
+  // best run is re-run at the fine step before it is trimmed or returned (refine).
+  const double coarse_step = options.search_step_m > engine.options().resim_step_m
+                                 ? options.search_step_m
+                                 : engine.options().resim_step_m;
+  double step_now = coarse_step;
+  bool best_is_coarse = false;
+  auto consider = [&](LambdaRun run, bool coarse) {
     if (!have_best || error_of(run) < error_of_best()) {
       out.run = std::move(run);
       have_best = true;
+      best_is_coarse = coarse;
     }
+  };
+  auto refine = [&] {
+    if (!have_best || !best_is_coarse) return;
+    out.run = engine.run(out.run.lambda, start);
+    ++out.iterations;
+    best_is_coarse = false;
   };
   // While the bracket walks the lattice, runs come from (and go to) the memo.
   bool walking = memo != nullptr;
   auto evaluate = [&](double x) {
     LambdaRun run;
     if (!(walking && memo->find(std::exp(x), &run))) {
-      run = engine.run(std::exp(x), start);
+      run = engine.run(std::exp(x), start, step_now);
       ++out.iterations;
       if (walking) memo->keep(run);
       report_progress(options.progress, "lambda evaluation", out.iterations, 0);
     }
     const double f = run_arrives(run.sim) ? run.sim.running_time_s - target : INFINITY;
-    consider(std::move(run));
+    consider(std::move(run), step_now > engine.options().resim_step_m);
     return f;
   };
   auto trimmed = [&] {
@@ -169,9 +186,12 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,
                            options.tolerance_s};
   auto close = [&](LambdaBracket& b) {
+    step_now = coarse_step;
     for (double tolerance : phases) {
       b.narrow([&] { return error_of_best() <= tolerance; });
+      refine();
       if (error_of_best() <= options.tolerance_s || trimmed()) return true;
+      step_now = engine.options().resim_step_m;  // the fine tolerance on fine runs
     }
     return false;
   };
@@ -194,7 +214,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   for (const auto& [lambda, time] : limit.scan) {
     if (time < target) x_hi = std::log(lambda), f_hi = time - target;
   }
-  consider(std::move(limit.run));
+  consider(std::move(limit.run), false);
   if (std::isnan(f_hi)) f_hi = evaluate(x_hi);
   LambdaBracket slow_side(evaluate, x_lo, f_lo, x_hi, f_hi, options.max_iterations);
   out.converged = close(slow_side);

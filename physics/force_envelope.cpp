@@ -39,9 +39,12 @@ double ForceEnvelope::raw_kN(double v_kmh) const {
     return lo.force_kN + w * (hi.force_kN - lo.force_kN);
   }
   // The piece whose [from, to) holds v; beyond the last piece its polynomial is extrapolated.
+  // Pieces are sorted by from_kmh: the last one starting at or below v is the first one
+  // followed by a start above v.
   const PolynomialPiece* piece = &pieces_.front();
   for (const auto& p : pieces_) {
-    if (v_kmh >= p.from_kmh) piece = &p;
+    if (!(v_kmh >= p.from_kmh)) break;
+    piece = &p;
   }
   double f = 0.0;
   for (auto c = piece->coeffs_kN.rbegin(); c != piece->coeffs_kN.rend(); ++c) f = f * v_kmh + *c;

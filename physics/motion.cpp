@@ -4,8 +4,7 @@
 
 namespace ecorail::physics {
 
-double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) const {
-  const double w = resistance_N(v_ms, seg);
+double Motion::force_for_N(Control c, double v_ms, double w) const {
   switch (c) {
     case Control::MaxTraction:
       return train_->max_traction_N(v_ms, w);
@@ -19,13 +18,27 @@ double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) 
   return 0.0;
 }
 
-double Motion::de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const {
+double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) const {
+  return force_for_N(c, v_ms, resistance_N(v_ms, seg));
+}
+
+double Motion::de_ds(Control c, double e, double track, double tunnel, double* force_N) const {
   const double v = speed_from_e(e);
-  *force_N = applied_force_N(c, v, seg);
-  return (*force_N - resistance_N(v, seg)) / train_->effective_mass_kg();
+  const double w = resistance_N(v, track, tunnel);
+  *force_N = force_for_N(c, v, w);
+  return (*force_N - w) / train_->effective_mass_kg();
 }
 
 namespace {
+
+// Where the last look-up of this thread landed: substeps move forward along a run, so the
+// segment is nearly always the same one or the next (Route::index_at with a hint).
+thread_local std::size_t segment_hint = 0;
+
+const RouteSegment& segment_at(const Route& route, double s_m) {
+  segment_hint = route.index_at(s_m, segment_hint);
+  return route.segments()[segment_hint];
+}
 
 Regime classify(double u, double max_traction, double max_brake) {
   constexpr double kFull = 0.99;   // within 1 % of the envelope counts as full
@@ -40,20 +53,28 @@ Regime classify(double u, double max_traction, double max_brake) {
 
 Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order,
                         double e_cap_end) const {
-  const RouteSegment& seg = route_->at(s_m);
+  return substep_impl<true>(s_m, e0, h, c, rk_order, e_cap_end);
+}
+
+template <bool kSupervised>
+Substep Motion::substep_impl(double s_m, double e0, double h, Control c, int rk_order,
+                             double e_cap_end) const {
+  const RouteSegment& seg = segment_at(*route_, s_m);
+  const double track = seg.track_N_per_kN();
+  const double tunnel = seg.tunnel_drag_N_per_kN_kmh2;
   Substep out;
   double u1, u2, u3, u4;
   double e1;
   double work;
-  const double k1 = de_ds(c, e0, seg, &u1);
+  const double k1 = de_ds(c, e0, track, tunnel, &u1);
   if (rk_order >= 4) {
-    const double k2 = de_ds(c, e0 + 0.5 * h * k1, seg, &u2);
-    const double k3 = de_ds(c, e0 + 0.5 * h * k2, seg, &u3);
-    const double k4 = de_ds(c, e0 + h * k3, seg, &u4);
+    const double k2 = de_ds(c, e0 + 0.5 * h * k1, track, tunnel, &u2);
+    const double k3 = de_ds(c, e0 + 0.5 * h * k2, track, tunnel, &u3);
+    const double k4 = de_ds(c, e0 + h * k3, track, tunnel, &u4);
     e1 = e0 + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     work = h / 6.0 * (u1 + 2.0 * u2 + 2.0 * u3 + u4);
   } else {
-    const double k2 = de_ds(c, e0 + h * k1, seg, &u2);
+    const double k2 = de_ds(c, e0 + h * k1, track, tunnel, &u2);
     e1 = e0 + 0.5 * h * (k1 + k2);
     work = 0.5 * h * (u1 + u2);
   }
@@ -69,13 +90,14 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
     out.time_s = v0 > 0.0 ? 2.0 * out.length_m / v0 : 0.0;
     work *= frac;
   } else {
-    const double e_env = std::min(envelope_->e_at(s_m + h), e_cap_end);
-    if (e1 > e_env) {
+    const double e_env = kSupervised ? std::min(envelope_->e_at(s_m + h), e_cap_end)
+                                     : std::numeric_limits<double>::infinity();
+    if (kSupervised && e1 > e_env) {
       // Leaving the envelope: apply the constant force that lands on it, but no more braking
       // than the train has.
       const double e_mid = 0.5 * (e0 + e_env);
       const double v_mid = speed_from_e(e_mid);
-      const double w = resistance_N(v_mid, seg);
+      const double w = resistance_N(v_mid, track, tunnel);
       const double m = train_->effective_mass_kg();
       double u = m * (e_env - e0) / h + w;
       const double u_min = -train_->max_brake_N(v_mid, w);
@@ -99,7 +121,7 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
           out.regime = Regime::FullBrake;
           break;
         case Control::Hold: {
-          const double w = resistance_N(v0, seg);
+          const double w = resistance_N(v0, track, tunnel);
           out.regime = classify(u1, train_->max_traction_N(v0, w), train_->max_brake_N(v0, w));
           break;
         }
@@ -134,13 +156,29 @@ Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order
 }
 
 Advance Motion::advance(double s0, double e0, double s1, Control c, const StepSettings& st) const {
+  return advance_impl<true>(s0, e0, s1, c, st, nullptr, nullptr);
+}
+
+Motion::FreeAdvance Motion::advance_unsupervised(double s0, double e0, double s1, Control c,
+                                                 const StepSettings& st) const {
+  FreeAdvance out;
+  out.advance = advance_impl<false>(s0, e0, s1, c, st, &out.e_max, &out.stopped);
+  return out;
+}
+
+template <bool kSupervised>
+Advance Motion::advance_impl(double s0, double e0, double s1, Control c, const StepSettings& st,
+                             double* e_max, bool* stopped) const {
   Advance out;
   double s = s0;
   double e = e0;
   while (s < s1 - 1e-9) {
-    const double seg_end = route_->at(s).end_m;
+    const double seg_end = segment_at(*route_, s).end_m;
     const double next = std::min({s1, seg_end, s + st.max_substep_m});
-    const Substep sub = substep(s, e, next - s, c, st.rk_order);
+    const Substep sub = substep_impl<kSupervised>(s, e, next - s, c, st.rk_order,
+                                                  std::numeric_limits<double>::infinity());
+    if (e_max) *e_max = std::max(*e_max, sub.e_end);
+    if (stopped) *stopped = *stopped || sub.stopped;
     out.time_s += sub.time_s;
     out.traction_work_J += sub.traction_work_J;
     out.brake_work_J += sub.brake_work_J;

@@ -62,6 +62,16 @@ class Motion {
                   double e_cap_end = std::numeric_limits<double>::infinity()) const;
   // Advances from s0 to s1 with control c, splitting at route changes and max_substep.
   Advance advance(double s0_m, double e0, double s1_m, Control c, const StepSettings& st) const;
+  // The same advance with the speed envelope not supervised. Where the envelope never binds
+  // (e_max <= the envelope at every substep end) the result is bit for bit advance()'s; the
+  // DP's transition table uses this to integrate a transition once for every stage it fits.
+  struct FreeAdvance {
+    Advance advance;
+    double e_max = 0.0;    // largest e at any substep end
+    bool stopped = false;  // some substep came to rest (advance.stalled then needs s1)
+  };
+  FreeAdvance advance_unsupervised(double s0_m, double e0, double s1_m, Control c,
+                                   const StepSettings& st) const;
 
   // Net specific force (u - W) / M_eff for control c at speed v on a segment, and the force u.
   double applied_force_N(Control c, double v_ms, const RouteSegment& seg) const;
@@ -71,14 +81,27 @@ class Motion {
   const SpeedEnvelope& envelope() const { return *envelope_; }
   // Total resistance in N at v on a segment: Davis, gradient, curve and tunnel drag.
   double resistance_N(double v_ms, const RouteSegment& seg) const {
-    const double w = train_->resistance_N(v_ms, seg.track_N_per_kN());
-    if (seg.tunnel_drag_N_per_kN_kmh2 == 0.0) return w;  // the common case costs one compare
-    const double v_kmh = 3.6 * v_ms;
-    return w + train_->specific_to_N(seg.tunnel_drag_N_per_kN_kmh2 * v_kmh * v_kmh);
+    return resistance_N(v_ms, seg.track_N_per_kN(), seg.tunnel_drag_N_per_kN_kmh2);
   }
 
  private:
-  double de_ds(Control c, double e, const RouteSegment& seg, double* force_N) const;
+  // The same with the segment's track resistance and tunnel drag read once (a substep reads
+  // them once and evaluates the force law up to four times).
+  double resistance_N(double v_ms, double track_N_per_kN, double tunnel_drag) const {
+    const double w = train_->resistance_N(v_ms, track_N_per_kN);
+    if (tunnel_drag == 0.0) return w;  // the common case costs one compare
+    const double v_kmh = 3.6 * v_ms;
+    return w + train_->specific_to_N(tunnel_drag * v_kmh * v_kmh);
+  }
+  double force_for_N(Control c, double v_ms, double w) const;
+  double de_ds(Control c, double e, double track_N_per_kN, double tunnel_drag,
+               double* force_N) const;
+  template <bool kSupervised>
+  Substep substep_impl(double s_m, double e, double h_m, Control c, int rk_order,
+                       double e_cap_end) const;
+  template <bool kSupervised>
+  Advance advance_impl(double s0_m, double e0, double s1_m, Control c, const StepSettings& st,
+                       double* e_max, bool* stopped) const;
 
   const Train* train_;
   const Route* route_;

@@ -40,6 +40,15 @@ class Route {
   // Index of the segment holding s; a boundary belongs to the segment that starts there.
   std::size_t index_at(double s_m) const;
   const RouteSegment& at(double s_m) const { return segments_[index_at(s_m)]; }
+  // The same index, first trying segment `hint` and the one after it (a cursor along a run:
+  // O(1) when the positions asked for move forward); any hint gives the same answer.
+  std::size_t index_at(double s_m, std::size_t hint) const {
+    const std::size_t n = segments_.size();
+    for (std::size_t i = hint; i < n && i <= hint + 1; ++i) {
+      if (segments_[i].start_m <= s_m && (i + 1 == n || s_m < segments_[i + 1].start_m)) return i;
+    }
+    return index_at(s_m);
+  }
   // Speed limit at s; at a boundary the stricter of the two neighbouring limits applies.
   double speed_limit_ms(double s_m) const;
   // Kilometre post of position s (a label for reports).

@@ -114,9 +114,21 @@ SimulationResult simulate(const Motion& motion, const ControlProgram& program,
                           const SimulationOptions& opt) {
   std::vector<double> breakpoints;
   for (const auto& step : program) breakpoints.push_back(step.from_m);
-  const ControlLaw law = [&program](double s_m, double) {
-    auto it = std::upper_bound(program.begin(), program.end(), s_m + 1e-9,
+  // The entry holding s: the one found last time or the next (a cursor, as the run moves
+  // forward), else a binary search; either gives the same entry.
+  std::size_t cursor = 0;
+  const ControlLaw law = [&program, &cursor](double s_m, double) {
+    const double x = s_m + 1e-9;
+    const std::size_t n = program.size();
+    for (std::size_t k = cursor; k < n && k <= cursor + 1; ++k) {
+      if (!(x < program[k].from_m) && (k + 1 == n || x < program[k + 1].from_m)) {
+        cursor = k;
+        return program[k].control;
+      }
+    }
+    auto it = std::upper_bound(program.begin(), program.end(), x,
                                [](double s, const ProgramStep& p) { return s < p.from_m; });
+    if (it != program.begin()) cursor = static_cast<std::size_t>(it - program.begin()) - 1;
     return it == program.begin() ? program.front().control : (it - 1)->control;
   };
   return simulate(motion, law, breakpoints, opt);
