@@ -120,26 +120,36 @@ double FrontierCurve::marginal_at(double time_s) const {
 }
 
 double FrontierCurve::time_for_marginal(double lambda) const {
-  const double target = -lambda;                                     // the slope sought
-  if (target <= pieces_.front().slope(t_min_s())) return t_min_s();  // also lambda = inf
-  // The slope is continuous and rises along the curve: find the first piece that reaches the
-  // target and solve there (linear in x on every piece).
+  // The time that minimises E(t) + lambda t over the whole curve: on a convex stretch the time
+  // whose marginal is lambda, and where a grid wobble leaves the curve locally non-convex (the
+  // flat-out point and the first coasts a fraction of a second later can differ by little, so
+  // the marginal dips just after t_min) still the minimiser a time price means. Searching only
+  // for the first place the marginal reaches lambda returned t_min + 0.01 s there for any price
+  // (A3 -> A4). Candidates: every piece's ends and its stationary point.
+  if (!(lambda < std::numeric_limits<double>::infinity())) return t_min_s();
+  const double target = -lambda;  // the slope sought
+  double best_t = t_min_s();
+  double best = energy_at(best_t) + lambda * best_t;
+  const auto consider = [&](const Piece& p, double t) {
+    t = std::clamp(t, p.t0, p.t1);
+    const double cost = p.value(t) + lambda * t;
+    if (cost < best) best = cost, best_t = t;
+  };
   for (const Piece& p : pieces_) {
-    if (p.slope(p.t1) < target) continue;
-    double x;
+    consider(p, p.t0);
+    consider(p, p.t1);
+    // dE/dx = d0 + 2 c (x - x0); in the root zone dE/dt = dE/dx / (2 x).
     if (p.in_root) {
-      // (d0 + 2 c (x - x0)) / (2 x) = target.
       const double den = 2.0 * p.c - 2.0 * target;
-      if (den == 0.0) return p.t0;
-      x = (2.0 * p.c * p.x0 - p.d0) / den;
-      x = std::clamp(x, p.x0, p.x_of(p.t1));
-      return std::clamp(p.t_ref + x * x, p.t0, p.t1);
+      if (den != 0.0) {
+        const double x = (2.0 * p.c * p.x0 - p.d0) / den;
+        if (x >= 0.0) consider(p, p.t_ref + x * x);
+      }
+    } else if (p.c != 0.0) {
+      consider(p, p.x0 + (target - p.d0) / (2.0 * p.c));
     }
-    if (p.c <= 0.0) return p.t0;
-    x = p.x0 + (target - p.d0) / (2.0 * p.c);
-    return std::clamp(x, p.t0, p.t1);
   }
-  return t_max_s();
+  return best_t;
 }
 
 }  // namespace ecorail::dp

@@ -33,8 +33,10 @@ class FrontierCurve {
   double energy_at(double time_s) const;
   // -dE/dT (J/s) at a running time inside the domain.
   double marginal_at(double time_s) const;
-  // The running time whose marginal equals lambda, clamped to the domain: t_min when lambda is
-  // above the marginal there, t_max when below the marginal at t_max.
+  // The running time that minimises E(t) + lambda t over the domain: on a convex curve the time
+  // whose marginal equals lambda (t_min when lambda is above the marginal there, t_max when
+  // below the marginal at t_max); where grid wobble leaves the curve locally non-convex, the
+  // global minimiser, so that it is non-increasing in lambda as a time price requires.
   double time_for_marginal(double lambda_J_per_s) const;
   const Frontier& frontier() const { return frontier_; }
 

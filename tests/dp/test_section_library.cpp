@@ -4,6 +4,8 @@
 // and options checked before any work.
 #include <gtest/gtest.h>
 
+#include <iterator>
+
 #include <cmath>
 #include <map>
 
@@ -50,6 +52,40 @@ TEST(FrontierCurve, TimeForMarginalInvertsMarginalAt) {
   EXPECT_EQ(curve.time_for_marginal(1e12), curve.t_min_s());
   EXPECT_EQ(curve.time_for_marginal(0.0), curve.t_max_s());
   EXPECT_THROW(curve.energy_at(70.0), std::out_of_range);
+}
+
+// The first points of A3 -> A4's frontier (s, kJ; the first is the flat-out run): the energy
+// falls little over the first 0.11 s and then steeply, so the curve is not convex there and its
+// marginal dips just after t_min. The time for a price must still minimise E(t) + lambda t
+// (checked against a fine scan) and fall as the price rises; it once returned t_min + 0.01 s
+// for every price from 0.5 to 20 MJ/s.
+TEST(FrontierCurve, TimeForMarginalMinimisesTheLagrangianWhereTheCurveWobbles) {
+  const double t[] = {118.339, 118.450, 118.589, 118.784, 118.999, 119.339, 119.700,
+                      120.339, 121.339, 122.339, 124.339, 128.339, 134.339, 142.339};
+  const double e_kJ[] = {70983.1, 69986.1, 67180.2, 66022.6, 65015.3, 63709.3, 62533.2,
+                         60783.1, 58500.0, 56663.0, 53197.3, 47227.9, 39994.1, 32567.6};
+  Frontier f;
+  f.min_time_s = t[0];
+  for (std::size_t i = 0; i < std::size(t); ++i) {
+    FrontierPoint p;
+    p.target_time_s = p.running_time_s = t[i];
+    p.cost_J = e_kJ[i] * 1e3;
+    p.lambda_J_per_s = i == 0 ? INFINITY : 1.0;
+    p.converged = true;
+    f.points.push_back(p);
+  }
+  const FrontierCurve curve(f);
+  double previous = curve.t_max_s();
+  for (double lambda : {300e3, 500e3, 1000e3, 1700e3, 3000e3, 9000e3, 20000e3}) {
+    const double found = curve.time_for_marginal(lambda);
+    double best = INFINITY;
+    for (double x = curve.t_min_s(); x <= curve.t_max_s(); x += 0.001)
+      best = std::min(best, curve.energy_at(x) + lambda * x);
+    EXPECT_LE(curve.energy_at(found) + lambda * found, best + 1e-6 * std::abs(best)) << lambda;
+    EXPECT_LE(found, previous + 1e-9) << lambda;  // a higher price never buys a longer time
+    previous = found;
+  }
+  EXPECT_GT(curve.time_for_marginal(1700e3), 120.0);  // not stuck at t_min
 }
 
 TEST(FrontierCurve, RejectsTimesThatDoNotIncrease) {
