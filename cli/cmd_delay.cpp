@@ -1,0 +1,397 @@
+// `ecorail delay`: one train leaves a station late (question 3.1). Reads the plan (the 2.1
+// reference plan or a timetable CSV as `ecorail timetable ... --csv` writes it), hands it to
+// recovery::recover_delay and prints and writes what it found: where the train is back on
+// time, the new running times and dwells, traction energy against the plan and the seed
+// paper's rule, and the followers' separation margins (docs/delays.md).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "cli/errors.hpp"
+#include "cli/journey_solve.hpp"
+#include "cli/output_options.hpp"
+#include "cli/problem_options.hpp"
+#include "data/atomic_file.hpp"
+#include "data/csv_reader.hpp"
+#include "data/input_error.hpp"
+#include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "dp/section_library.hpp"
+#include "output/frontier_cache.hpp"
+#include "output/gnuplot.hpp"
+#include "output/speed_plot.hpp"
+#include "output/timeline.hpp"
+#include "recovery/delay_recovery.hpp"
+
+namespace ecorail::cli {
+
+namespace {
+
+struct DelayArgs {
+  ProblemOptions problem;  // --line, --train-file, --ds, --dv, --threads, --objective
+  std::string plan_file;
+  bool reference = false;
+  int train = 0;  // 1-based
+  std::string station;
+  double delay_s = std::nan("");
+  double min_dwell_s = 30.0;
+  int followers = 5;
+  double frontier_span_s = 60.0;
+  std::string cache_dir;
+  bool no_cache = false;
+  bool full_report = false;
+  std::string json, csv, svg;
+};
+
+[[noreturn]] void bad(const std::string& flag, const std::string& expected) {
+  throw data::InputError("command line", 0, flag, expected);
+}
+
+// The timetable CSV of `ecorail timetable ... --csv` (columns train, station, arrival_s,
+// departure_s; others ignored): rows grouped by train, stations in the order of their rows.
+recovery::Plan read_plan(const std::string& file) {
+  const data::CsvTable table = data::CsvTable::read(file);
+  const std::size_t c_train = table.column("train"), c_station = table.column("station");
+  const std::size_t c_arr = table.column("arrival_s"), c_dep = table.column("departure_s");
+  std::map<long, std::vector<const data::CsvRow*>> by_train;
+  for (const data::CsvRow& row : table.rows()) {
+    const double k = table.number(row, c_train);
+    if (k != std::floor(k) || k < 1 || k > 1e6)
+      throw data::InputError(file, row.row, "train", "a train number >= 1");
+    by_train[static_cast<long>(k)].push_back(&row);
+  }
+  if (by_train.empty()) throw data::InputError(file, 0, "train", "at least one train's rows");
+  recovery::Plan plan;
+  long expected = 1;
+  for (const auto& [k, rows] : by_train) {
+    if (k != expected)
+      throw data::InputError(file, rows.front()->row, "train",
+                             "trains numbered 1, 2, ... without gaps; train " +
+                                 std::to_string(expected) + " is missing");
+    ++expected;
+    recovery::TrainStops t;
+    std::vector<std::string> names;
+    for (const data::CsvRow* row : rows) {
+      names.push_back(table.text(*row, c_station));
+      t.arrival_s.push_back(table.number(*row, c_arr));
+      t.departure_s.push_back(table.number(*row, c_dep));
+    }
+    if (plan.stations.empty()) plan.stations = names;
+    if (names != plan.stations)
+      throw data::InputError(file, rows.front()->row, "station",
+                             "the same stations for every train (train " + std::to_string(k) +
+                                 " differs from train 1)");
+    plan.trains.push_back(std::move(t));
+  }
+  if (const std::string why = plan.problem(); !why.empty())
+    throw data::InputError(file, 0, "arrival_s/departure_s", "a timetable that holds: " + why);
+  return plan;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+void write_sections_csv(std::ostream& out, const recovery::DelayRecoveryResult& r) {
+  out << "from,to,min_time_s,planned_time_s,new_time_s,rule_time_s,plan_energy_kJ,"
+         "new_energy_kJ,rule_energy_kJ,marginal_kJ_per_s,flat_out,planned_dwell_s,new_dwell_s,"
+         "new_departure_s,planned_arrival_s,new_arrival_s\n";
+  char buf[512];
+  for (const auto& s : r.sections) {
+    std::snprintf(
+        buf, sizeof buf,
+        "%s,%s,%.3f,%.3f,%.3f,%.3f,%.1f,%.1f,%.1f,%s,%d,%.3f,%.3f,%.3f,%.3f,%.3f\n", s.from.c_str(),
+        s.to.c_str(), s.min_time_s, s.planned_time_s, s.new_time_s, s.rule_time_s, s.plan_energy_kJ,
+        s.new_energy_kJ, s.rule_energy_kJ,
+        std::isfinite(s.marginal_kJ_per_s) ? data::format_number(s.marginal_kJ_per_s).c_str() : "",
+        s.flat_out ? 1 : 0, s.planned_dwell_s, s.new_dwell_s, s.new_departure_s,
+        s.planned_arrival_s, s.new_arrival_s);
+    out << buf;
+  }
+}
+
+nlohmann::json report_json(const recovery::DelayRecoveryResult& r, const recovery::Plan& plan,
+                           const DelayArgs& a) {
+  const auto& sm = r.summary;
+  nlohmann::json sections = nlohmann::json::array();
+  for (const auto& s : r.sections)
+    sections.push_back({{"from", s.from},
+                        {"to", s.to},
+                        {"min_time_s", s.min_time_s},
+                        {"planned_time_s", s.planned_time_s},
+                        {"new_time_s", s.new_time_s},
+                        {"rule_time_s", s.rule_time_s},
+                        {"plan_energy_kJ", s.plan_energy_kJ},
+                        {"new_energy_kJ", s.new_energy_kJ},
+                        {"rule_energy_kJ", s.rule_energy_kJ},
+                        {"marginal_kJ_per_s", number_or_null(s.marginal_kJ_per_s)},
+                        {"flat_out", s.flat_out},
+                        {"planned_dwell_s", s.planned_dwell_s},
+                        {"new_dwell_s", s.new_dwell_s},
+                        {"new_departure_s", s.new_departure_s},
+                        {"planned_arrival_s", s.planned_arrival_s},
+                        {"new_arrival_s", s.new_arrival_s}});
+  nlohmann::json trains = nlohmann::json::array();
+  for (const auto& t : r.trains)
+    trains.push_back(
+        {{"train", t.train + 1},
+         {"back_on_time_at",
+          t.back_on_time_at.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.back_on_time_at)},
+         {"never_late", t.never_late},
+         {"max_lateness_s", t.max_lateness_s},
+         {"final_lateness_s", t.final_lateness_s}});
+  nlohmann::json followers = nlohmann::json::array();
+  for (const auto& f : r.followers)
+    followers.push_back({{"train", f.train + 1},
+                         {"behind_train", f.behind + 1},
+                         {"affected", f.affected},
+                         {"min_speed_margin_kmh", number_or_null(f.min_speed_margin_kmh)},
+                         {"min_distance_margin_m", number_or_null(f.min_distance_margin_m)},
+                         {"min_gap_m", number_or_null(f.min_gap_m)},
+                         {"planned_run_margin_kmh", number_or_null(f.planned_run_margin_kmh)},
+                         {"plan_margin_kmh", number_or_null(f.plan_margin_kmh)},
+                         {"on_the_line_together", std::isfinite(f.min_speed_margin_kmh)}});
+  nlohmann::json j = {{"train", a.train},
+                      {"station", sm.station},
+                      {"delay_s", sm.delay_s},
+                      {"plan", a.reference ? "reference" : a.plan_file},
+                      {"stations", plan.stations},
+                      {"recovered", sm.recovered},
+                      {"back_on_time_at",
+                       sm.recovered ? nlohmann::json(sm.back_on_time_at) : nlohmann::json(nullptr)},
+                      {"final_lateness_s", sm.final_lateness_s},
+                      {"sections_used", sm.sections},
+                      {"recovery_energy_kJ", sm.recovery_energy_kJ},
+                      {"plan_energy_kJ", sm.plan_energy_kJ},
+                      {"rule_energy_kJ", sm.rule_energy_kJ},
+                      {"rule_extra_energy_kJ", sm.rule_energy_kJ - sm.recovery_energy_kJ},
+                      {"sections", sections},
+                      {"trains", trains},
+                      {"followers", followers},
+                      {"followers_affected", sm.followers_affected},
+                      {"min_follower_margin_kmh", number_or_null(sm.min_follower_margin_kmh)},
+                      {"termination", std::string(dp::termination_name(sm.termination))},
+                      {"warnings", sm.warnings},
+                      {"brief_report", sm.BriefReport()},
+                      {"wall_s", sm.wall_s}};
+  if (r.allocation.sections > 0)
+    j["allocation"] = {{"method",
+                        "bisection on the common marginal energy per second over the "
+                        "sections' frontier curves (exact for convex frontiers)"},
+                       {"termination", std::string(dp::termination_name(r.allocation.termination))},
+                       {"lambda_kJ_per_s", r.allocation.lambda_J_per_s / 1e3},
+                       {"sections", r.allocation.sections},
+                       {"at_minimum_time", r.allocation.at_lower},
+                       {"at_upper_bound", r.allocation.at_upper},
+                       {"iterations", r.allocation.iterations},
+                       {"energy_by_frontiers_kJ", r.allocation.energy_J / 1e3},
+                       {"brief_report", r.allocation.BriefReport()}};
+  return j;
+}
+
+void print_report(std::FILE* out, const recovery::DelayRecoveryResult& r, bool full) {
+  const auto& sm = r.summary;
+  std::fputs((full ? sm.FullReport() : sm.BriefReport() + warnings_text(sm.warnings)).c_str(), out);
+  std::fprintf(out, "  %-9s %9s %9s %9s %9s %11s %11s %11s %9s %9s\n", "section", "min_s", "plan_s",
+               "new_s", "rule_s", "plan_kJ", "new_kJ", "rule_kJ", "marg_kJ/s", "dwell_s");
+  for (const auto& s : r.sections) {
+    const std::string name = s.from + "-" + s.to;
+    std::fprintf(out, "  %-9s %9.3f %9.3f %9.3f %9.3f %11.1f %11.1f %11.1f %9s %9.3f\n",
+                 name.c_str(), s.min_time_s, s.planned_time_s, s.new_time_s, s.rule_time_s,
+                 s.plan_energy_kJ, s.new_energy_kJ, s.rule_energy_kJ,
+                 std::isfinite(s.marginal_kJ_per_s)
+                     ? data::format_number(std::round(s.marginal_kJ_per_s * 1000) / 1000).c_str()
+                     : "flat-out",
+                 s.new_dwell_s);
+  }
+  for (const auto& t : r.trains) {
+    std::string what = t.never_late ? "held up, but never late"
+                       : t.back_on_time_at.empty()
+                           ? "not back on time, " + data::format_number(t.final_lateness_s) +
+                                 " s late at the last station"
+                           : "back on time at " + t.back_on_time_at;
+    std::fprintf(out, "  train %d: %s (largest lateness %.2f s)\n", t.train + 1, what.c_str(),
+                 t.max_lateness_s);
+  }
+  auto kmh = [](double v) {
+    return std::isfinite(v) ? data::format_number(std::round(v * 100) / 100) + " km/h"
+                            : std::string("none (never on the line together)");
+  };
+  for (const auto& f : r.followers)
+    std::fprintf(out,
+                 "  follower train %d behind train %d: %s; least separation margin %s, %s m "
+                 "beyond the braking distance (its planned run: %s; the plan: %s)\n",
+                 f.train + 1, f.behind + 1, f.affected ? "HELD UP" : "not affected",
+                 kmh(f.min_speed_margin_kmh).c_str(),
+                 std::isfinite(f.min_distance_margin_m)
+                     ? data::format_number(std::round(f.min_distance_margin_m * 10) / 10).c_str()
+                     : "inf",
+                 kmh(f.planned_run_margin_kmh).c_str(), kmh(f.plan_margin_kmh).c_str());
+  std::fflush(out);
+}
+
+void run_delay(const DelayArgs& a) {
+  if (a.reference == !a.plan_file.empty()) bad("--plan/--reference", "exactly one of them");
+  if (a.station.empty()) bad("--station", "the station the train leaves late");
+  if (!std::isfinite(a.delay_s) || a.delay_s < 0.0 || a.delay_s > 86400.0)
+    bad("--delay", "a delay in seconds, 0 <= D <= 86400; got " + data::format_number(a.delay_s));
+  if (a.train < 1) bad("--train", "a train number >= 1");
+  if (a.followers < 0 || a.followers > 1000) bad("--followers", "0 to 1000 followers");
+  if (!(a.frontier_span_s >= 10.0 && a.frontier_span_s <= 600.0))
+    bad("--frontier-span", "a span in [10, 600] s");
+  check_output_targets(
+      {{"--json", a.json, false}, {"--csv", a.csv, false}, {"--svg", a.svg, true}});
+  if (!a.svg.empty() && output::plot_format_for(a.svg) != output::PlotFormat::Svg)
+    bad("--svg", "a file ending in .svg; got '" + a.svg + "'");
+  recovery::DelayRecoveryOptions options;
+  options.min_dwell_s = a.min_dwell_s;
+  options.max_followers = a.followers;
+  options.check_followers = a.followers > 0;
+  require_valid(options);
+  ProblemOptions whole = a.problem;
+  whole.from.clear();
+  const Problem p = load_problem(whole);
+  // The plan first: a bad file fails before any engine is built.
+  recovery::Plan plan;
+  std::vector<std::string> stops;
+  if (!a.reference) {
+    plan = read_plan(a.plan_file);
+    stops = plan.stations;
+    std::vector<std::string> line_stops;
+    try {
+      line_stops = data::stops_between(p.line, stops.front(), stops.back());
+    } catch (const data::InputError&) {
+      throw data::InputError(a.plan_file, 0, "station",
+                             "stations of the line; got " + stops.front() + " .. " + stops.back());
+    }
+    if (line_stops != stops)
+      throw data::InputError(a.plan_file, 0, "station",
+                             "every station of the line between " + stops.front() + " and " +
+                                 stops.back() + ", in the order of travel");
+  } else {
+    stops = data::stops_between(p.line, p.line.stations.front().name, p.line.stations.back().name);
+  }
+  const auto it = std::find(stops.begin(), stops.end(), a.station);
+  if (it == stops.end())
+    bad("--station", "a station of the plan (" + stops.front() + " .. " + stops.back() +
+                         "); got '" + a.station + "'");
+  const std::size_t station = static_cast<std::size_t>(it - stops.begin());
+  if (station + 1 == stops.size())
+    bad("--station", "a station the train departs from (not the last, " + stops.back() + ")");
+  dp::SectionLibraryOptions lib_options;
+  lib_options.engine = engine_options(a.problem);
+  lib_options.frontier_span_s = a.frontier_span_s;
+  require_valid(lib_options);
+  char key[200];
+  std::snprintf(key, sizeof key, "delay|%016llx|%016llx|%s",
+                static_cast<unsigned long long>(p.line.checksum()),
+                static_cast<unsigned long long>(data::train_checksum(p.train)),
+                a.problem.curve_resistance.c_str());
+  const dp::SectionLibrary library(p.train, data::build_routes(p.line, stops, p.train), lib_options,
+                                   key);
+  if (a.reference) {
+    dp::JourneyOptions journey;
+    journey.engine = lib_options.engine;
+    journey.measure_marginals = false;
+    plan = recovery::reference_plan(library, stops, journey);
+  }
+  if (static_cast<std::size_t>(a.train) > plan.trains.size())
+    bad("--train", "a train from 1 to " + std::to_string(plan.trains.size()) + "; got " +
+                       std::to_string(a.train));
+  output::FileFrontierStore store(a.cache_dir.empty()
+                                      ? output::FileFrontierStore::default_directory()
+                                      : std::filesystem::path(a.cache_dir));
+  recovery::DelayRecoveryResult r;
+  try {
+    r = recovery::recover_delay(library, plan, static_cast<std::size_t>(a.train - 1), station,
+                                a.delay_s, options, a.no_cache ? nullptr : &store);
+  } catch (const recovery::DelayInputError& e) {
+    const std::string& f = e.field();
+    throw data::InputError(f == "plan" && !a.reference ? a.plan_file : "command line", 0,
+                           f == "plan" ? (a.reference ? "--reference" : "--plan") : "--" + f,
+                           e.what());
+  }
+  OutputOptions streams;
+  streams.json = a.json;
+  streams.csv = a.csv;
+  streams.plot = a.svg;
+  std::FILE* out = report_stream(streams);
+  print_report(out, r, a.full_report);
+  nlohmann::json report = report_json(r, plan, a);
+  report["provenance"] = run_provenance(p, whole,
+                                        {{"plan", a.reference ? "reference" : a.plan_file},
+                                         {"train_number", a.train},
+                                         {"station", a.station},
+                                         {"delay_s", a.delay_s},
+                                         {"min_dwell_s", a.min_dwell_s},
+                                         {"followers", a.followers},
+                                         {"frontier_span_s", a.frontier_span_s}});
+  data::OutputBatch batch;
+  if (!a.json.empty()) batch.add(a.json, [&](std::ostream& o) { o << report.dump(2) << "\n"; });
+  if (!a.csv.empty()) batch.add(a.csv, [&](std::ostream& o) { write_sections_csv(o, r); });
+  if (!a.svg.empty() && !r.recovery_trip.empty()) {
+    std::vector<std::string> names;
+    for (const auto& s : r.sections) names.push_back(s.from);
+    names.push_back(r.sections.back().to);
+    output::SpeedPlotLabels labels;
+    labels.stations = names;
+    char title[300];
+    std::snprintf(title, sizeof title,
+                  "Train %d, %.0f s late at %s: exact recovery %.0f kJ (rule %.0f kJ, plan %.0f "
+                  "kJ)",
+                  a.train, a.delay_s, a.station.c_str(), r.summary.recovery_energy_kJ,
+                  r.summary.rule_energy_kJ, r.summary.plan_energy_kJ);
+    const output::Timeline timeline = output::trip_timeline(r.recovery_trip);
+    batch.add_produced(a.svg, [&](const std::filesystem::path& f) {
+      output::write_speed_plot_file(f, timeline, title, labels, output::PlotFormat::Svg);
+    });
+  }
+  batch.commit();
+}
+
+}  // namespace
+
+void add_delay_command(CLI::App& app) {
+  auto args = std::make_shared<DelayArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "delay", "recover a late departure: back on time first, then least energy");
+  cmd->add_option("--plan", args->plan_file,
+                  "timetable CSV as `ecorail timetable evaluate|optimise --csv` writes it");
+  cmd->add_flag("--reference", args->reference,
+                "the 2.1 plan: 30 s dwells, optimal split of 1726 s, 100 trains uniform over "
+                "63900 s");
+  cmd->add_option("--train", args->train, "the late train (1-based, in departure order)")
+      ->required();
+  cmd->add_option("--station", args->station, "the station it leaves late")->required();
+  cmd->add_option("--delay", args->delay_s, "how late it leaves (s)")->required();
+  cmd->add_option("--min-dwell", args->min_dwell_s, "shortest dwell at a stop (s)")
+      ->capture_default_str();
+  cmd->add_option("--followers", args->followers,
+                  "followers checked for separation at most (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--frontier-span", args->frontier_span_s,
+                  "each section's frontier covers [T_min, T_min + span] (s)")
+      ->capture_default_str();
+  cmd->add_option("--line", args->problem.line_path, "line (default: the embedded reference line)");
+  cmd->add_option("--train-file", args->problem.train_path,
+                  "train TOML or TTOBench JSON (default: the reference train)");
+  cmd->add_option("--ds", args->problem.ds_m, "grid position step in m")->capture_default_str();
+  cmd->add_option("--dv", args->problem.dv_kmh, "grid speed step in km/h")->capture_default_str();
+  cmd->add_option("--threads", args->problem.threads, "OpenMP threads (default: all cores)");
+  cmd->add_option("--cache-dir", args->cache_dir,
+                  "frontier cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
+  cmd->add_flag("--no-cache", args->no_cache, "compute every frontier afresh");
+  cmd->add_flag("--full-report", args->full_report, "print the full report");
+  cmd->add_option("--json", args->json, "write the recovery as JSON ('-': standard output)");
+  cmd->add_option("--csv", args->csv, "write the recovery sections as CSV ('-': standard output)");
+  cmd->add_option("--svg", args->svg, "write the recovery's speed profile (SVG)");
+  cmd->callback([args] { run_delay(*args); });
+}
+
+}  // namespace ecorail::cli

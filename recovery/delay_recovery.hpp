@@ -1,0 +1,138 @@
+// Delay recovery (question 3.1): train i leaves station A_j late by D seconds. It may run the
+// later sections faster, down to each section's flat-out time, shorten dwells down to the
+// minimum dwell, and may not leave a station before its timetabled departure. The objective is
+// lexicographic. First, back on time (arrival no later than planned) at the earliest station:
+// that is the first station a flat-out run with minimum dwells reaches in time, since no
+// driving reaches any station sooner. Second, the least traction energy over the recovery
+// sections: the time left (planned arrival there minus the late departure minus the minimum
+// dwells) is split over those sections by the exact convex allocation of recovery/allocation.hpp
+// on their energy-time frontiers (one time price; the no-early-departure constraint, which can
+// only bind at the last intermediate stop, is enforced exactly by re-allocating with it active),
+// and each section is then solved for its new running time and re-simulated. Beside it the seed
+// paper's rule: flat out section by section until the delay is gone, the section that closes it
+// run in exactly the time that does. A delay no station absorbs is run flat out with minimum
+// dwells to the last station and the final lateness reported (recovered = false). Every energy
+// and time reported is a forward re-simulation. Followers: the next train's planned run is
+// scanned against the late train's actual run under the separation cap (service/separation.hpp);
+// when the cap would be exceeded the follower is driven behind it (service::run_follower,
+// re-optimised under the cap for its planned arrivals) and checked in turn, and the chain stops
+// at the first train that is not held up.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dp/section_library.hpp"
+#include "dp/termination.hpp"
+#include "physics/trip.hpp"
+#include "recovery/allocation.hpp"
+#include "recovery/plan.hpp"
+#include "service/service_simulator.hpp"
+
+namespace ecorail::recovery {
+
+struct DelayRecoveryOptions {
+  double min_dwell_s = 30.0;           // a stop's dwell never goes below min(this, planned)
+  double on_time_tolerance_s = 0.05;   // re-simulated arrival within this of the plan is on time
+  double flat_out_threshold_s = 0.02;  // a time this close to the minimum is run flat out
+  AllocationOptions allocation;
+  bool check_followers = true;
+  int max_followers = 5;  // followers simulated at most, behind the late train
+  // Separation (the cap) and how a held-up follower is driven (re-optimised under the cap).
+  service::ServiceOptions service;
+  // Checks every field; on failure writes one sentence naming the field into *error.
+  bool IsValid(std::string* error) const;
+};
+
+// Bad input to recover_delay (unknown train, the last station, a negative delay, a plan the
+// train cannot run): what() says which.
+class DelayInputError : public std::invalid_argument {
+ public:
+  DelayInputError(std::string field, const std::string& message)
+      : std::invalid_argument(message), field_(std::move(field)) {}
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
+};
+
+struct RecoverySection {
+  std::size_t index = 0;  // section index in the plan (station index of its start)
+  std::string from, to;
+  double min_time_s = 0.0;
+  double planned_time_s = 0.0, new_time_s = 0.0, rule_time_s = 0.0;        // re-simulated
+  double plan_energy_kJ = 0.0, new_energy_kJ = 0.0, rule_energy_kJ = 0.0;  // traction
+  double marginal_kJ_per_s = 0.0;  // -dE/dT at the new time, by the frontier (inf: flat out)
+  bool flat_out = false;           // new run is the flat-out run
+  double planned_arrival_s = 0.0, new_arrival_s = 0.0;
+  double planned_dwell_s = 0.0, new_dwell_s = 0.0;  // at the arrival stop (0 at the last)
+  double new_departure_s = 0.0;                     // from the section's first stop
+};
+
+// One train after the delay: where it is back on time.
+struct AffectedTrain {
+  int train = 0;                   // 0-based
+  bool never_late = false;         // held up, but never late by more than the tolerance
+  std::string back_on_time_at;     // "" when not back on time by the last station
+  double max_lateness_s = 0.0;     // largest arrival lateness over its stops
+  double final_lateness_s = 0.0;   // at the station where it is back on time, or the last
+  std::vector<double> lateness_s;  // arrival lateness per station (0 at the first)
+};
+
+struct FollowerCheck {
+  int train = 0;  // 0-based
+  int behind = 0;
+  bool affected = false;  // its planned run would exceed the cap behind the train ahead
+  // Its planned run behind the train ahead's actual run (cap - v, least; negative: exceeded).
+  double planned_run_margin_kmh = 0.0;
+  // Its planned run behind the train ahead's planned run (the plan's own margin).
+  double plan_margin_kmh = 0.0;
+  // Its actual run (the planned one when not affected) behind the train ahead's actual run.
+  double min_speed_margin_kmh = 0.0;
+  double min_distance_margin_m = 0.0;  // gap less the braking distance, least
+  double min_gap_m = 0.0;
+};
+
+struct DelayRecoverySummary {
+  dp::Termination termination = dp::Termination::FAILURE;
+  int train = 0;
+  std::string station;
+  double delay_s = 0.0;
+  bool recovered = false;
+  std::string back_on_time_at;  // "" : not recovered
+  double final_lateness_s = 0.0;
+  int sections = 0;
+  double recovery_energy_kJ = 0.0, plan_energy_kJ = 0.0, rule_energy_kJ = 0.0;
+  int followers_checked = 0, followers_affected = 0;
+  double min_follower_margin_kmh = 0.0;  // NaN when no follower
+  double wall_s = 0.0;
+  std::vector<std::string> warnings;
+
+  std::string BriefReport() const;
+  std::string FullReport() const;
+  bool IsSolutionUsable() const { return dp::is_usable(termination); }
+};
+
+struct DelayRecoveryResult {
+  std::vector<RecoverySection> sections;  // from the late departure to the recovery station
+  AllocationSummary allocation;           // empty when no allocation was needed
+  std::vector<AffectedTrain> trains;      // the late train first, then held-up followers
+  std::vector<FollowerCheck> followers;
+  physics::Trip recovery_trip;  // the late train over the recovery sections, on the clock
+  physics::Trip rule_trip;      // the rule's run over the same sections
+  physics::Trip planned_trip;   // the plan over the same sections
+  DelayRecoverySummary summary;
+};
+
+// train: 0-based index into plan.trains; station: index of the late departure (not the last).
+// The library holds the plan's sections in order (library.size() == plan.sections()); store
+// (may be null) keeps frontiers between runs. DelayInputError for bad input; std::runtime_error
+// when a section cannot be solved for its time (never a result that misses its time).
+DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan& plan,
+                                  std::size_t train, std::size_t station, double delay_s,
+                                  const DelayRecoveryOptions& options,
+                                  dp::FrontierStore* store = nullptr);
+
+}  // namespace ecorail::recovery
