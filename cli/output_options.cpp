@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "data/atomic_file.hpp"
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "output/gnuplot.hpp"
 #include "output/gtfs_writer.hpp"
@@ -89,27 +90,18 @@ std::vector<OutputTarget> gtfs_targets(const OutputOptions& o) {
 }
 
 double gtfs_start_s(const std::string& text) {
-  const auto fail = [&] {
-    return data::InputError(
-        "command line", 0, "--gtfs-start",
-        "a clock time HH:MM:SS, HH:MM or a number of seconds >= 0; got '" + text + "'");
-  };
-  double parts[3] = {0.0, 0.0, 0.0};
-  int count = 0;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t colon = text.find(':', begin);
-    const std::string part = text.substr(begin, colon - begin);
-    if (count == 3 || part.empty() || part.find_first_not_of("0123456789.") != std::string::npos)
-      throw fail();
-    parts[count++] = std::stod(part);
-    if (colon == std::string::npos) break;
-    begin = colon + 1;
+  const std::string expected = "a clock time HH:MM:SS, HH:MM or a number of seconds >= 0";
+  if (text.find(':') != std::string::npos)
+    return data::parse_clock_s(text, data::TwoFieldClock::HoursMinutes, "command line", 0,
+                               "--gtfs-start", expected);
+  double seconds = -1.0;
+  try {
+    seconds = data::parse_number(text, "command line", 0, "--gtfs-start");
+  } catch (const data::InputError&) {
   }
-  if (count == 1) return parts[0];
-  if (parts[1] >= 60.0 || parts[2] >= 60.0) throw fail();
-  return count == 2 ? parts[0] * 3600.0 + parts[1] * 60.0
-                    : parts[0] * 3600.0 + parts[1] * 60.0 + parts[2];
+  if (!(seconds >= 0.0))
+    throw data::InputError("command line", 0, "--gtfs-start", expected + "; got '" + text + "'");
+  return seconds;
 }
 
 void add_gtfs_outputs(data::OutputBatch& batch, const OutputOptions& o,

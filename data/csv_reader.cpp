@@ -114,6 +114,36 @@ double CsvTable::number(const CsvRow& row, std::size_t column) const {
   return parse_number(row.fields.at(column), file_, row.row, header_.at(column));
 }
 
+double parse_clock_s(const std::string& text, TwoFieldClock two_fields, const std::string& file,
+                     int row, const std::string& field, const std::string& expected) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto colon = text.find(':', start);
+    parts.push_back(
+        text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  const InputError bad(file, row, field, expected + "; got '" + text + "'");
+  if (parts.size() < 2 || parts.size() > 3) throw bad;
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    double v = 0.0;
+    try {
+      v = parse_number(parts[i], file, row, field);
+    } catch (const InputError&) {
+      throw bad;
+    }
+    const bool last = i + 1 == parts.size();
+    if (v < 0.0 || (i > 0 && v >= 60.0) || (!last && v != std::floor(v))) throw bad;
+    seconds = seconds * 60.0 + v;
+  }
+  // Two fields as hours and minutes: the value above is in minutes.
+  if (parts.size() == 2 && two_fields == TwoFieldClock::HoursMinutes) seconds *= 60.0;
+  return seconds;
+}
+
 double parse_number(std::string_view text, const std::string& file, int row,
                     const std::string& field) {
   const std::string_view original = text;

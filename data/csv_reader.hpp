@@ -44,6 +44,13 @@ class CsvTable {
 // anything else ("", "abc", "1.2x", "nan", "inf") is InputError(file, row, field, "a number").
 double parse_number(std::string_view text, const std::string& file, int row,
                     const std::string& field);
+// How a clock time of two fields reads: "MM:SS" (per-second logs) or "HH:MM" (a start time).
+enum class TwoFieldClock { MinutesSeconds, HoursMinutes };
+// Parses a clock time "H:MM:SS" (seconds may have a fraction) or two fields read as two_fields
+// into seconds; minutes and seconds below 60, only the last field fractional, nothing negative.
+// Anything else is InputError(file, row, field, expected + "; got '<text>'").
+double parse_clock_s(const std::string& text, TwoFieldClock two_fields, const std::string& file,
+                     int row, const std::string& field, const std::string& expected);
 // A number for messages: up to 10 significant digits, no trailing zeros ("355", "23803.34").
 std::string format_number(double value);
 // Reads a whole file as text; a missing, unreadable or non-regular file is an InputError.

@@ -51,37 +51,6 @@ class Columns {
   std::map<std::string, std::size_t> index_;
 };
 
-// "HH:MM:SS", "H:MM:SS.s" or "MM:SS" to seconds.
-double parse_hms(const std::string& text, const std::string& file, int row,
-                 const std::string& field) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (true) {
-    const auto colon = text.find(':', start);
-    parts.push_back(
-        text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
-  const std::string expected = "a time HH:MM:SS; got '" + text + "'";
-  if (parts.size() < 2 || parts.size() > 3) throw data::InputError(file, row, field, expected);
-  double seconds = 0.0;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    double v = 0.0;
-    try {
-      v = data::parse_number(parts[i], file, row, field);
-    } catch (const data::InputError&) {
-      throw data::InputError(file, row, field, expected);
-    }
-    const bool last = i + 1 == parts.size();
-    if (v < 0.0 || (i > 0 && v >= 60.0) || (!last && v != std::floor(v))) {
-      throw data::InputError(file, row, field, expected);
-    }
-    seconds = seconds * 60.0 + v;
-  }
-  return seconds;
-}
-
 std::string number_text(double v) {
   return data::format_number(v);
 }
@@ -142,8 +111,10 @@ Log parse_log(std::string_view text, const std::string& label) {
     LogRow row;
     row.source_row = r.row;
     auto num = [&](std::size_t c) { return table.number(r, c); };
-    row.time_s = time_s ? num(*time_s)
-                        : parse_hms(table.text(r, *time_hms), label, r.row, cols.name(*time_hms));
+    row.time_s =
+        time_s ? num(*time_s)
+               : data::parse_clock_s(table.text(r, *time_hms), data::TwoFieldClock::MinutesSeconds,
+                                     label, r.row, cols.name(*time_hms), "a time HH:MM:SS");
     if (speed_ms) {
       row.speed_ms = num(*speed_ms);
     } else if (speed_cm_s) {

@@ -12,6 +12,8 @@ expect_error "--gtfs" "${journey[@]}" --gtfs missing-dir
 expect_error "--gtfs" "${journey[@]}" --gtfs -
 expect_error "--gtfs-start" "${journey[@]}" --gtfs empty --gtfs-start 5:75:00
 expect_error "--gtfs-start" "${journey[@]}" --gtfs empty --gtfs-start soon
+expect_error "--gtfs-start" "${journey[@]}" --gtfs empty --gtfs-start .
+expect_error "--gtfs-start" "${journey[@]}" --gtfs empty --gtfs-start -60
 mkdir empty/stops.txt  # a directory where a GTFS file would go is never replaced
 expect_error "--gtfs" "${journey[@]}" --gtfs empty
 expect_error "--gtfs" "${journey[@]}" --gtfs . --json stop_times.txt

@@ -77,5 +77,28 @@ TEST(ParseNumber, RejectsEverythingElse) {
   }
 }
 
+// Clock times of logs (MM:SS for two fields) and of --gtfs-start (HH:MM): one parser.
+TEST(ClockTime, ReadsFieldsAndRefusesWhatIsNoClock) {
+  const auto ms = TwoFieldClock::MinutesSeconds, hm = TwoFieldClock::HoursMinutes;
+  auto clock = [](const std::string& t, TwoFieldClock two) {
+    return parse_clock_s(t, two, "f", 3, "time", "a time");
+  };
+  EXPECT_EQ(clock("01:02:03", ms), 3723.0);
+  EXPECT_EQ(clock("01:02:03", hm), 3723.0);
+  EXPECT_EQ(clock("02:03", ms), 123.0);
+  EXPECT_EQ(clock("02:03", hm), 7380.0);
+  EXPECT_EQ(clock("25:00:01.5", hm), 90001.5);  // past midnight, a fraction of the last field
+  for (const std::string bad :
+       {".", "1", "1:60", "1:2:60", "1.5:00", "-1:00", "1:2:3:4", ":", "a:b", "1::2"}) {
+    try {
+      clock(bad, hm);
+      ADD_FAILURE() << "read: " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("a time; got '" + bad + "'"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ecorail::data
