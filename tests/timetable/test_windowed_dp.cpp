@@ -15,6 +15,17 @@ namespace ecorail::timetable {
 namespace {
 
 // A small day: span 80 s, one peak window (30, 45), peak headways 3-5 s, off-peak 8-12 s.
+// Question 2.2's day: 240 trains over 63 900 s, peak windows (7200, 12600) and (43200, 50400),
+// peak headways 120-150 s, others 300-660 s.
+FleetProblem reference_day() {
+  FleetProblem p;
+  p.trains = 240;
+  p.headway_min_s = 300;
+  p.headway_max_s = 660;
+  p.peak_windows = {{7200, 12600}, {43200, 50400}};
+  return p;
+}
+
 FleetProblem small_day(int trains) {
   FleetProblem p;
   p.trains = trains;
@@ -153,11 +164,7 @@ TEST(WindowedDp, ChainWithoutPenaltyEqualsSeparableOnALargerDay) {
 
 TEST(WindowedDp, TooFewTrainsForTheWindowsIsAnError) {
   // The reference day: 240 trains fit; 100 cannot fill the peak windows at 150 s at most.
-  FleetProblem p;
-  p.trains = 240;
-  p.headway_min_s = 300;
-  p.headway_max_s = 660;
-  p.peak_windows = {{7200, 12600}, {43200, 50400}};
+  FleetProblem p = reference_day();
   std::string why;
   EXPECT_TRUE(p.IsValid(&why)) << why;
   p.trains = 100;
@@ -196,11 +203,7 @@ TEST(WindowedDp, DeparturesBreakingAClassAreNamed) {
 }
 
 TEST(WindowedDp, UniformIsEvenWithinEveryRunOfOneClass) {
-  FleetProblem p;
-  p.trains = 240;
-  p.headway_min_s = 300;
-  p.headway_max_s = 660;
-  p.peak_windows = {{7200, 12600}, {43200, 50400}};
+  FleetProblem p = reference_day();
   const std::vector<int> t = departures_from_headways(uniform_headways(p));
   ASSERT_EQ(departures_problem(p, t), "");
   // The least sum of squares: within a run of consecutive headways of one class, moving a
@@ -220,11 +223,7 @@ TEST(WindowedDp, UniformIsEvenWithinEveryRunOfOneClass) {
 }
 
 TEST(WindowedDp, NearestToClassTargetsKeepsTheClasses) {
-  FleetProblem p;
-  p.trains = 240;
-  p.headway_min_s = 300;
-  p.headway_max_s = 660;
-  p.peak_windows = {{7200, 12600}, {43200, 50400}};
+  FleetProblem p = reference_day();
   const std::vector<int> h = windowed_nearest_headways(p, 149.0, 331.5);
   const std::vector<int> t = departures_from_headways(h);
   ASSERT_EQ(departures_problem(p, t), "");
