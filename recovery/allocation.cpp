@@ -18,7 +18,8 @@ double sum_of(const std::vector<double>& v) {
 
 // The running time at which a section's marginal energy per second equals lambda, within its
 // bounds: bisection on the curve's marginal, which is continuous and non-increasing on a convex
-// frontier (FrontierCurve::marginal_at; its own inverse is not used, see docs/delays.md).
+// frontier (FrontierCurve::marginal_at; its time_for_marginal minimises over the whole curve,
+// not within the bounds, see docs/delays.md).
 double time_at_price(const AllocationItem& it, double lambda) {
   double a = it.lower_s, b = it.upper_s;
   if (!(lambda < it.curve->marginal_at(a))) return a;
