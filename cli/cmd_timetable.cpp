@@ -452,7 +452,8 @@ void run_optimise(const TimetableArgs& given) {
     if (a.model != "power-flow" && a.model != "sections")
       bad("--per-train-patterns",
           "--model power-flow or sections (the per-train search prices one train's pattern "
-          "against the fleet's power balance); got '" +
+          "against the fleet's power balance; the overlap model has none and the network "
+          "balance lays one trip under every train); got '" +
               a.model + "'");
     a.optimise = "pattern";
   }
@@ -479,8 +480,6 @@ void run_optimise(const TimetableArgs& given) {
   }
   if (a.optimise != "headways" && a.optimise != "pattern")
     bad("--optimise", "headways or pattern; got '" + a.optimise + "'");
-  if (a.optimise == "pattern" && s.model.model == timetable::EnergyModel::Network)
-    bad("--optimise", "headways with --model network (pattern search on the network is not built)");
   timetable::HeadwayOptimiserResult result;
   nlohmann::json pattern_report;
   if (a.optimise == "pattern") {
@@ -504,13 +503,14 @@ void run_optimise(const TimetableArgs& given) {
     std::printf("  %s\n", r.BriefReport().c_str());
     const auto& before = r.headways_only.total;
     const auto& after = r.timetable.evaluation.total;
-    pattern_report = {{"moves_accepted", r.moves_accepted},
-                      {"patterns_evaluated", r.patterns_evaluated},
-                      {"headways_only_substation_energy_kJ", before.substation_J() / 1e3},
-                      {"headways_only_traction_energy_kJ", before.traction_J / 1e3},
-                      {"headways_only_used_regen_kJ", before.used_regen_J / 1e3},
-                      {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
-                      {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
+    pattern_report = {
+        {"moves_accepted", r.moves_accepted},
+        {"patterns_evaluated", r.patterns_evaluated},
+        {"headways_only_substation_energy_kJ", before.substation_J() / 1e3},
+        {"headways_only_traction_energy_kJ", before.traction_J / 1e3},
+        {"headways_only_used_regen_kJ", timetable::used_regen_of(r.headways_only) / 1e3},
+        {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
+        {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
     if (!r.per_train.empty()) {
       const auto& common = r.common_pattern.total;
       pattern_report["per_train_patterns"] = true;
@@ -540,7 +540,11 @@ void run_optimise(const TimetableArgs& given) {
     throw std::runtime_error("the optimiser failed: " + result.summary.message);
   nlohmann::json energy = output::fleet_energy_json(result.evaluation, s.problem);
   const auto& sm = result.summary;
-  if (std::isfinite(sm.bound_used_regen_J)) {
+  if (std::isfinite(sm.bound_substation_J)) {
+    // Network model: a lower bound on substation + curtailed traction energy.
+    energy["bound_substation_kJ"] = sm.bound_substation_J / 1e3;
+    energy["gap_fraction_of_substation"] = sm.gap_fraction;
+  } else if (std::isfinite(sm.bound_used_regen_J)) {
     energy["bound_used_regen_kJ"] = sm.bound_used_regen_J / 1e3;
     energy["gap_fraction_of_substation"] = sm.gap_fraction;
     if (sm.pair_sum_J > 0.0) energy["pair_sum_of_result_kJ"] = sm.pair_sum_J / 1e3;

@@ -166,7 +166,14 @@ bool HeadwayOptimiserOptions::IsValid(std::string* error) const {
 
 std::string HeadwayOptimiserSummary::BriefReport() const {
   char buf[512];
-  if (std::isfinite(bound_used_regen_J)) {
+  if (std::isfinite(bound_substation_J)) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: %s, used regen %.1f kJ, substation %.1f kJ, bound %.1f kJ, gap %.4f %% of "
+                  "substation energy, %.2f s",
+                  std::string(termination_name(termination)).c_str(), method.c_str(),
+                  used_regen_J / 1e3, substation_J / 1e3, bound_substation_J / 1e3,
+                  100.0 * gap_fraction, wall_s);
+  } else if (std::isfinite(bound_used_regen_J)) {
     std::snprintf(buf, sizeof buf,
                   "%s: %s, used regen %.1f kJ, bound %.1f kJ, gap %.4f %% of substation energy "
                   "%.1f kJ, %.2f s",

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,7 +61,12 @@ struct HeadwayOptimiserSummary {
   double substation_J = 0.0;
   double bound_used_regen_J = 0.0;  // NaN when no bound (exact methods: equals used)
   double gap_fraction = 0.0;        // (bound - used) / substation energy
-  double start_used_J = 0.0;        // best start before annealing and polish
+  // Network model (network_bound.hpp): a lower bound on substation + curtailed traction energy
+  // of every timetable, NaN for the other models; gap_fraction is then (substation + curtailed
+  // traction - bound) / substation energy.
+  double bound_substation_J = std::numeric_limits<double>::quiet_NaN();
+  double curtailed_traction_J = 0.0;
+  double start_used_J = 0.0;  // best start before annealing and polish
   // Pair sum of the result (pair_bound.hpp): no bound built on pairs of trains can come below
   // it, so (pair sum - used) / substation is the part of the gap such a bound cannot close.
   double pair_sum_J = 0.0;

@@ -9,7 +9,9 @@
 
 #include "timetable/headway_dp.hpp"
 #include "timetable/network_balance.hpp"
+#include "timetable/network_bound.hpp"
 #include "timetable/search_support.hpp"
+#include "timetable/windowed_dp.hpp"
 
 namespace ecorail::timetable {
 
@@ -22,9 +24,16 @@ std::uint64_t draw(std::uint64_t seed, std::uint64_t run, std::uint64_t move, st
   return counter_draw(seed, run, move, k, 0x6e6574776f726bULL);
 }
 
+// The departure range of train k (0 < k < N-1) given its neighbours (with peak windows: the
+// range of any class; allowed() then checks the classes of both headways, as the power-flow
+// search does).
 std::pair<int, int> feasible_range(const FleetProblem& p, const std::vector<int>& t, int k) {
-  return {std::max(t[k - 1] + p.headway_min_s, t[k + 1] - p.headway_max_s),
-          std::min(t[k - 1] + p.headway_max_s, t[k + 1] - p.headway_min_s)};
+  return {std::max(t[k - 1] + p.any_headway_min_s(), t[k + 1] - p.any_headway_max_s()),
+          std::min(t[k - 1] + p.any_headway_max_s(), t[k + 1] - p.any_headway_min_s())};
+}
+
+bool allowed(const FleetProblem& p, const std::vector<int>& t, int k, int d) {
+  return !p.windowed() || (p.headway_allowed(t[k - 1], d) && p.headway_allowed(d, t[k + 1]));
 }
 
 struct RunResult {
@@ -52,6 +61,7 @@ RunResult anneal(NetworkBalance& balance, const FleetProblem& p, std::vector<int
     lo = std::max(lo, t[k] - 30), hi = std::min(hi, t[k] + 30);
     if (hi <= lo) continue;
     const int d = lo + static_cast<int>(draw(seed, run, i, 1) % (hi - lo + 1));
+    if (!allowed(p, t, k, d)) continue;
     const int back = t[k];
     mean += std::fabs(static_cast<double>(balance.move(k, d)));
     balance.move(k, back);
@@ -72,7 +82,7 @@ RunResult anneal(NetworkBalance& balance, const FleetProblem& p, std::vector<int
     if (hi <= lo) continue;
     int d = lo + static_cast<int>(draw(seed, run, m + 64, 1) % (hi - lo));
     if (d >= t[k]) ++d;
-    if (d > hi) continue;
+    if (d > hi || !allowed(p, t, k, d)) continue;
     const MicroJoules delta = balance.move(k, d);  // < 0: better
     ++out.moves;
     const bool accept = delta <= 0 || uniform01(draw(seed, run, m + 64, 2)) <
@@ -103,7 +113,7 @@ long polish(NetworkBalance& balance, const FleetProblem& p, std::vector<int>& t,
       MicroJoules best = balance.substation();
       int best_d = start;
       for (int d = lo; d <= hi; ++d) {
-        if (d == start) continue;
+        if (d == start || !allowed(p, t, k, d)) continue;
         balance.move(k, d);
         ++moves;
         if (balance.substation() < best) best = balance.substation(), best_d = d;
@@ -128,8 +138,6 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   const EnergyModelOptions& eo = models.options();
   if (eo.model != EnergyModel::Network)
     throw std::invalid_argument("optimise_network_headways needs the network model");
-  if (p.windowed())
-    throw std::invalid_argument("peak-hour headway classes are not built for the network model");
   const power::PowerSupply& supply = *eo.power_supply;
   const double horizon = p.span_s + models.trip().arrival_s() + 10.0;
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
@@ -143,20 +151,26 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   coarse_options.time_step_s = std::max(eo.time_step_s, options.anneal_step_s);
   const NetworkProfile coarse(models.trip(), coarse_options.ticks_per_second());
 
-  // Starts: the two-train approximation's exact optimum and the uniform timetable.
-  const int lo = p.headway_min_s, m = p.headway_max_s - p.headway_min_s + 1;
+  // Starts: the two-train approximation's exact optimum (with peak windows: the windowed DP's,
+  // the same values for both classes) and the uniform timetable.
+  const int lo = p.any_headway_min_s(), m = p.any_headway_max_s() - lo + 1;
   std::vector<double> value(m, 0.0);
   {
     NetworkBalance two(coarse, supply, eo.traction_efficiency, 2,
-                       p.headway_max_s + models.trip().arrival_s() + 10.0, threads);
+                       p.any_headway_max_s() + models.trip().arrival_s() + 10.0, threads);
     for (int e = 0; e < m; ++e) {
       two.place_all({0, lo + e});
       value[e] = -to_joules(two.substation());
     }
   }
-  const HeadwayDomain dom{p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
   std::vector<std::vector<int>> starts;
-  starts.push_back(departures_from_headways(maximise_separable(dom, value).headways_s));
+  if (p.windowed()) {
+    starts.push_back(
+        departures_from_headways(maximise_windowed(p, WindowedValue{value, value}).headways_s));
+  } else {
+    const HeadwayDomain dom{p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
+    starts.push_back(departures_from_headways(maximise_separable(dom, value).headways_s));
+  }
   starts.push_back(departures_from_headways(uniform_headways(p)));
   report("starts", 0.0);
 
@@ -190,14 +204,23 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   }
   out.headways_s = headways_from_departures(t);
   out.evaluation = models.evaluate(t);
-  s.method = "annealing (" + std::to_string(runs) + " runs) and polish on the network model";
+  s.method = "annealing (" + std::to_string(runs) +
+             " runs) and polish on the network model, network bound";
   // The regenerated energy the line took (the fleet total's "used" is traction minus substation
   // energy, which auxiliaries and line losses make negative on the network).
   s.used_regen_J = out.evaluation.network ? out.evaluation.network->used_regen_J
                                           : out.evaluation.total.used_regen_J;
   s.substation_J = out.evaluation.total.substation_J();
-  s.bound_used_regen_J = NAN;  // no bound for the network model
-  s.gap_fraction = NAN;
+  // The bound is on substation + curtailed traction energy (network_bound.hpp); the gap counts
+  // the result's curtailed traction (none on the example supply) as drawn.
+  s.bound_used_regen_J = NAN;
+  s.bound_substation_J =
+      network_substation_bound(models.network_profile(), supply, eo.traction_efficiency, p)
+          .substation_J;
+  s.curtailed_traction_J =
+      out.evaluation.network ? out.evaluation.network->curtailed_traction_J : 0.0;
+  s.gap_fraction =
+      (s.substation_J + s.curtailed_traction_J - s.bound_substation_J) / s.substation_J;
   const bool unsolved = out.evaluation.network && out.evaluation.network->unsolved_instants > 0;
   s.termination = unsolved               ? Termination::FAILURE
                   : s.time_limit_reached ? Termination::NO_CONVERGENCE

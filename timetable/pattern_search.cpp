@@ -1,8 +1,10 @@
 #include "timetable/pattern_search.hpp"
+#include "timetable/network_balance.hpp"
 #include "timetable/search_support.hpp"
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -141,17 +143,25 @@ bool PatternSearchOptions::IsValid(std::string* error) const {
   return true;
 }
 
+double used_regen_of(const FleetEvaluation& e) {
+  return e.network ? e.network->used_regen_J : e.total.used_regen_J;
+}
+
 std::string PatternSearchResult::BriefReport() const {
   const FleetEnergy& a = headways_only.total;
   const FleetEnergy& b = common_pattern.total;
   char buf[1024];
   int n = std::snprintf(
       buf, sizeof buf,
-      "pattern search: %d moves accepted of %d patterns; substation %.1f -> %.1f kJ "
+      "pattern search: %d moves accepted of %d patterns%s; substation %.1f -> %.1f kJ "
       "(%.1f kJ), traction %.1f -> %.1f kJ (%+.1f kJ), used regen %.1f -> %.1f kJ",
-      moves_accepted, patterns_evaluated, a.substation_J() / 1e3, b.substation_J() / 1e3,
-      (b.substation_J() - a.substation_J()) / 1e3, a.traction_J / 1e3, b.traction_J / 1e3,
-      (b.traction_J - a.traction_J) / 1e3, a.used_regen_J / 1e3, b.used_regen_J / 1e3);
+      moves_accepted, patterns_evaluated,
+      full_evaluations > 0
+          ? (" (" + std::to_string(full_evaluations) + " evaluated in full)").c_str()
+          : "",
+      a.substation_J() / 1e3, b.substation_J() / 1e3, (b.substation_J() - a.substation_J()) / 1e3,
+      a.traction_J / 1e3, b.traction_J / 1e3, (b.traction_J - a.traction_J) / 1e3,
+      used_regen_of(headways_only) / 1e3, used_regen_of(common_pattern) / 1e3);
   if (!per_train.empty() && n > 0 && n < static_cast<int>(sizeof buf)) {
     const FleetEnergy& c = timetable.evaluation.total;
     std::snprintf(buf + n, sizeof buf - n,
@@ -179,7 +189,10 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   if (options.per_train_patterns && !balance_model)
     throw std::invalid_argument(
         "per-train patterns need the power-flow or sections model (the others price a pattern "
-        "for the whole fleet at once)");
+        "for the whole fleet at once; the network balance lays one trip under every train)");
+  // The network model screens a candidate pattern on the annealing's coarse grid (a tenth of the
+  // load flows at 1 s) and confirms an improvement on its own grid before taking it.
+  const bool network_model = model.model == EnergyModel::Network;
   const SearchClock::time_point start_time = SearchClock::now();
   PatternSearchResult out;
   const auto report = [&](const char* stage, int accepted, int evaluated, double substation_J) {
@@ -192,6 +205,17 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   HeadwayOptimiserResult first = optimise_headways(start_models, options.headways);
   out.headways_only = first.evaluation;
   const std::vector<int> departures = first.evaluation.departures_s;
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  EnergyModelOptions coarse_model = model;
+  coarse_model.time_step_s = std::max(model.time_step_s, options.headways.anneal_step_s);
+  const auto coarse_substation = [&](const physics::Trip& trip) {
+    const NetworkProfile profile(trip, coarse_model.ticks_per_second());
+    NetworkBalance balance(profile, *model.power_supply, model.traction_efficiency, problem.trains,
+                           problem.span_s + trip.arrival_s() + 10.0, threads);
+    balance.place_all(departures);
+    return balance.unsolved_bins() > 0 ? HUGE_VAL : to_joules(balance.substation());
+  };
+  double best_coarse = network_model ? coarse_substation(start.trip) : 0.0;
 
   // The balance models keep one power balance for the whole search: a candidate pattern is a
   // new profile laid under every train, not a new balance (a day's balance is ~100 MB).
@@ -228,16 +252,26 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
         const physics::Trip trip = cache.trip(*p);
         double substation = 0.0;
         std::unique_ptr<PowerProfile> profile;
+        double coarse = 0.0;
         if (balance_model) {
           profile = make_profile(trip, model);
           lay_all(*balance, profile.get());
           substation = balance->energy().substation_J();
+        } else if (network_model) {
+          coarse = coarse_substation(trip);
+          if (!(coarse < best_coarse - kImprovementJ)) continue;
+          ++out.full_evaluations;
+          const FleetEvaluation full = FleetModels(trip, problem, model).evaluate(departures);
+          if (full.network->unsolved_instants > 0) continue;  // never taken as a solution
+          substation = full.total.substation_J();
         } else {
+          ++out.full_evaluations;
           substation = FleetModels(trip, problem, model).evaluate(departures).total.substation_J();
         }
         if (substation < best_substation - kImprovementJ) {
           best = *p;
           best_substation = substation;
+          best_coarse = coarse;
           if (balance_model) current_profile = std::move(profile);
           improved = true;
           ++out.moves_accepted;
@@ -270,6 +304,12 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
       s.substation_J = kept.total.substation_J();
       if (std::isfinite(s.bound_used_regen_J))
         s.gap_fraction = (s.bound_used_regen_J - s.used_regen_J) / s.substation_J;
+      if (kept.network) {
+        s.used_regen_J = kept.network->used_regen_J;
+        s.curtailed_traction_J = kept.network->curtailed_traction_J;
+        s.gap_fraction =
+            (s.substation_J + s.curtailed_traction_J - s.bound_substation_J) / s.substation_J;
+      }
     }
   }
   out.common_pattern = out.timetable.evaluation;
@@ -292,7 +332,6 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   balance = final_models.make_balance();
   balance->place_all(out.timetable.evaluation.departures_s);
   out.per_train.assign(problem.trains, best);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   for (double delta : options.deltas_s) {
     bool improved = true;
     while (improved && !out.move_limit_reached && !out.time_limit_reached) {

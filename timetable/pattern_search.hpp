@@ -13,6 +13,11 @@
 // improving one is taken, sweep after sweep until none improves. Every pattern the search keeps
 // is feasible (dwells in range, each running time above its section's flat-out run) and the
 // result is never worse than the headways alone (the search only accepts improvements).
+// The network model (--model network) prices a candidate pattern first on the annealing's coarse
+// grid (anneal_step_s: one load flow per second of the day, NetworkBalance) and only a
+// candidate that is better there is evaluated on the model's own grid, where it must improve to
+// be taken; per-train patterns are not built for it (its balance lays one trip under every
+// train).
 #pragma once
 
 #include <functional>
@@ -52,6 +57,9 @@ struct PatternSearchResult {
   FleetEvaluation common_pattern;    // one pattern for all, before any per-train stage
   int moves_accepted = 0;
   int patterns_evaluated = 0;
+  // Candidates evaluated in full for the whole fleet (overlap and network models; the network
+  // model evaluates in full only those its coarse screen finds better).
+  int full_evaluations = 0;
   // Per-train stage (empty when not asked): each train's pattern and trip (departing at 0).
   std::vector<FleetPattern> per_train;
   std::vector<physics::Trip> per_train_trips;
@@ -63,6 +71,10 @@ struct PatternSearchResult {
   double wall_s = 0.0;
   std::string BriefReport() const;
 };
+
+// The regenerated energy a fleet used: for the network model the energy that entered the line
+// (FleetEnergy's used is traction less substation energy there).
+double used_regen_of(const FleetEvaluation& evaluation);
 
 PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const FleetProblem& problem,
                                      const EnergyModelOptions& model, const PatternTrip& start,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace ecorail::timetable {
 
@@ -33,6 +34,22 @@ PowerProfile::PowerProfile(const physics::Trip& trip, int ticks_per_second,
     regen_total_ += bin.regen;
     bins_.push_back(bin);
   }
+}
+
+PowerProfile PowerProfile::from_bins(int ticks_per_second, std::int32_t span_bins,
+                                     std::vector<PowerBin> bins) {
+  if (ticks_per_second < 1) throw std::invalid_argument("ticks_per_second must be >= 1");
+  PowerProfile p;
+  p.ticks_per_second_ = ticks_per_second;
+  p.span_bins_ = span_bins;
+  for (const PowerBin& b : bins) {
+    if (b.offset < 0 || b.offset >= span_bins || b.section != 0 || b.traction < 0 || b.regen < 0)
+      throw std::invalid_argument("a power bin outside the span, of another section or negative");
+    p.traction_total_ += b.traction;
+    p.regen_total_ += b.regen;
+  }
+  p.bins_ = std::move(bins);
+  return p;
 }
 
 }  // namespace ecorail::timetable

@@ -36,6 +36,10 @@ class PowerProfile {
   // trip must depart at 0; boundaries_m split the run into supply sections.
   PowerProfile(const physics::Trip& trip, int ticks_per_second,
                const std::vector<double>& boundaries_m);
+  // A profile of given bins (one section, no trip): e.g. a demand and a regeneration that are
+  // not a trip's traction and braking (the network bound's traction plus auxiliaries).
+  static PowerProfile from_bins(int ticks_per_second, std::int32_t span_bins,
+                                std::vector<PowerBin> bins);
 
   int ticks_per_second() const { return ticks_per_second_; }
   int sections() const { return sections_; }

@@ -39,7 +39,7 @@ expect_error "--power-supply" timetable evaluate "${small[@]}" --model network "
 expect_error "--power-supply" timetable evaluate "${small[@]}" --power-supply "$supply" --json out.json
 expect_error "missing.toml" timetable evaluate "${small[@]}" --model network --power-supply missing.toml "${outs[@]}"
 expect_error "--voltage-plot" timetable evaluate "${small[@]}" --voltage-plot v.svg
-expect_error "--optimise" timetable optimise "${small[@]}" --model network --power-supply "$supply" --optimise pattern --json o.json
+expect_error "--per-train-patterns" timetable optimise "${small[@]}" --model network --power-supply "$supply" --per-train-patterns --json o.json
 
 # A whole day of the reference case.
 "$ecorail" timetable evaluate --model network --power-supply "$supply" "${outs[@]}" \
