@@ -45,11 +45,12 @@ std::string cache_key(const Problem& p, const FrontierArgs& a, const std::string
                       const std::string& to) {
   char text[512];
   std::snprintf(text, sizeof text,
-                "%s|frontier-command|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g",
+                "%s|frontier-command|%016llx|%016llx|%s|%s|%.17g|%.17g|%s|%.17g|%.17g|%.17g|"
+                "cruise %s",
                 dp::kFrontierVersion, static_cast<unsigned long long>(p.line.checksum()),
                 static_cast<unsigned long long>(data::train_checksum(p.train)), from.c_str(),
                 to.c_str(), a.problem.ds_m, a.problem.dv_kmh, a.problem.objective.c_str(), a.t_min,
-                a.t_max, a.step);
+                a.t_max, a.step, a.problem.cruise.c_str());
   return text;
 }
 

@@ -60,6 +60,11 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
       ->check(CLI::IsMember({std::string(dp::objective_name(dp::Objective::Traction)),
                              std::string(dp::objective_name(dp::Objective::Net))}))
       ->capture_default_str();
+  cmd->add_option("--cruise", o.cruise,
+                  "hold: a long cruise is driven as one speed hold with its coasting point "
+                  "optimised (docs/journeys.md); grid: the grid's own cruise, as extracted")
+      ->check(CLI::IsMember({std::string("hold"), std::string("grid")}))
+      ->capture_default_str();
 }
 
 Problem load_problem(const ProblemOptions& o) {
@@ -135,6 +140,7 @@ dp::EngineOptions engine_options(const ProblemOptions& o) {
   // --objective is checked against the names by CLI11; the default covers the impossible rest.
   e.objective = dp::objective_from_name(o.objective).value_or(dp::Objective::Traction);
   e.threads = o.threads;  // the library sets OpenMP's thread count per call (dp/threads.hpp)
+  e.cruise_as_hold = o.cruise != "grid";
   return e;
 }
 

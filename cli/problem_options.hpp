@@ -28,6 +28,7 @@ struct ProblemOptions {
   int threads = 0;                         // 0: OpenMP's default
   std::string objective = "traction";      // a dp::objective_name
   std::string curve_resistance = "600/R";  // or "roeckl" (data::CurveFormula)
+  std::string cruise = "hold";  // "hold": cruising as one polished hold; "grid": the grid's own
 };
 
 struct Problem {

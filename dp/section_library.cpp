@@ -73,11 +73,11 @@ std::string SectionLibrary::frontier_key(std::size_t i) const {
   const GridSpec& g = options_.engine.grid;
   return format_text(
       "%s|%s|%s->%s|ds %.17g|dv %.17g|sub %.17g|resim %.17g|obj %d|span %.17g|"
-      "step %.17g",
+      "step %.17g|cruise %d",
       kFrontierVersion, problem_key_.c_str(), routes_.at(i).from_name().c_str(),
       routes_.at(i).to_name().c_str(), g.ds_m, g.dv_kmh, g.substep_m, options_.engine.resim_step_m,
       static_cast<int>(options_.engine.objective), options_.frontier_span_s,
-      options_.frontier_step_s);
+      options_.frontier_step_s, options_.engine.cruise_as_hold ? 1 : 0);
 }
 
 namespace {

@@ -76,6 +76,11 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.lambda_evaluations = found.iterations;
   s.trim_simulations = found.trim_iterations;
   s.trim_shift_m = found.trim_shift_m;
+  s.cruise_polished = found.cruise_polish.applied;
+  s.cruise_dropped_phases = found.cruise_polish.applied ? found.cruise_polish.dropped_phases : 0;
+  s.cruise_polish_simulations = found.cruise_polish.simulations;
+  s.cruise_polish_saving_kJ =
+      units::J_to_kJ(found.cruise_polish.cost_before_J - found.cruise_polish.cost_after_J);
   s.build_wall_s = std::chrono::duration<double>(t1 - t0).count();
   s.search_wall_s = std::chrono::duration<double>(t2 - t1).count();
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
@@ -148,6 +153,11 @@ std::string SectionSolveSummary::FullReport() const {
   r += format_text("  %-28s %s\n", "Lambda (time price)", lambda_text(lambda_J_per_s).c_str());
   r += format_text("  %-28s %d lambda evaluations, %d trim re-simulations (shift %.3f m)\n",
                    "Search", lambda_evaluations, trim_simulations, trim_shift_m);
+  if (cruise_polished) {
+    r += format_text(
+        "  %-28s one hold, %d short phases dropped, %d re-simulations, %.1f kJ saved\n",
+        "Cruise polish", cruise_dropped_phases, cruise_polish_simulations, cruise_polish_saving_kJ);
+  }
   r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
                    search_wall_s, total_wall_s);
   r += min_regime_text();

@@ -58,6 +58,12 @@ struct SectionSolveSummary {
   int merged_regimes = 0;
   double unmerged_energy_kJ = 0.0;
   double min_regime_cost_kJ = 0.0;
+  // The cruise polish (dp/cruise_polish.hpp): whether it replaced the grid's run, the short
+  // phases it dropped, the re-simulations it spent and what it saved (energy by the objective).
+  bool cruise_polished = false;
+  int cruise_dropped_phases = 0;
+  int cruise_polish_simulations = 0;
+  double cruise_polish_saving_kJ = 0.0;
   std::vector<std::string> warnings;
 
   std::string BriefReport() const;

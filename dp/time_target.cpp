@@ -56,6 +56,7 @@ bool TimeSearchOptions::IsValid(std::string* error) const {
   if (!(search_step_m >= 0.0 && search_step_m <= 10.0)) {
     return fail("search search_step_m must be in [0, 10] m");
   }
+  if (!cruise_polish.IsValid(error)) return false;
   return true;
 }
 
@@ -195,8 +196,14 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
     }
     return false;
   };
+  // A converged run's long cruise is polished (only ever replaced by a cheaper run in time).
+  auto polish = [&] {
+    out.cruise_polish =
+        polish_cruise(engine, target, options.tolerance_s, options.cruise_polish, out.run);
+  };
   if (close(bracket)) {
     out.converged = true;
+    polish();
     return out;
   }
   // Not met. Either the time is beyond the slow limit (refused, like one below the flat-out
@@ -218,6 +225,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   if (std::isnan(f_hi)) f_hi = evaluate(x_hi);
   LambdaBracket slow_side(evaluate, x_lo, f_lo, x_hi, f_hi, options.max_iterations);
   out.converged = close(slow_side);
+  if (out.converged) polish();
   return out;
 }
 

@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "dp/cruise_polish.hpp"
 #include "dp/progress.hpp"
 #include "dp/section_engine.hpp"
 
@@ -103,6 +104,9 @@ struct TimeSearchOptions {
   double search_step_m = 0.0;
   // Called after each lambda evaluation ("lambda evaluation", count, 0); may be empty.
   ProgressFn progress;
+  // A long cruise of the converged run is made one hold with its coasting point searched
+  // (dp/cruise_polish.hpp); only a cheaper run that meets the time replaces the grid's.
+  CruisePolishOptions cruise_polish;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -115,6 +119,7 @@ struct TimeSearchResult {
   bool converged = false;
   // Measured when the search could not meet a time (0: not measured).
   double max_time_s = 0.0;
+  CruisePolishReport cruise_polish;  // what the cruise polish did to the converged run
 };
 
 // Moves one switch point out of full traction so the re-simulated time matches the target.

@@ -60,6 +60,11 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   j["search"] = {{"lambda_evaluations", s.lambda_evaluations},
                  {"trim_simulations", s.trim_simulations},
                  {"trim_shift_m", s.trim_shift_m}};
+  if (s.cruise_polished) {
+    j["search"]["cruise_polish"] = {{"dropped_phases", s.cruise_dropped_phases},
+                                    {"simulations", s.cruise_polish_simulations},
+                                    {"saving_kJ", s.cruise_polish_saving_kJ}};
+  }
   if (s.min_regime.active()) {
     j["min_regime"] = {{"min_length_m", s.min_regime.min_length_m},
                        {"min_duration_s", s.min_regime.min_duration_s},

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Cruising is one speed hold (docs/journeys.md): on a 6 km level track the default run cruises
+# in exactly one hold, meets its time and stop, says in its JSON what the polish saved, and is
+# no dearer (within 0.01 %) than the grid's own run (--cruise grid), which cruises in a
+# staircase of several holds. A misspelt --cruise is exit 2.
+source "$(dirname "$0")/lib/common.sh" "$@"
+
+cat > level.json <<'JSON'
+{"metadata": {"id": "level_6km", "library version": "TTOBench v1.4"},
+ "stops": {"unit": "m", "values": [0, 6000]},
+ "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 80]]},
+ "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
+JSON
+grid=(--line level.json --from S0 --to S1 --ds 10 --dv 0.5)
+"$ecorail" min-time "${grid[@]}" --json min.json > /dev/null || { echo "FAIL: min-time"; fail=1; }
+t=$(python3 -c "import json; print(round(json.load(open('min.json'))['running_time_s'] * 1.12, 1))")
+"$ecorail" solve "${grid[@]}" --time "$t" --quiet --json hold.json > hold.txt ||
+  { echo "FAIL: solve (hold)"; cat hold.txt; fail=1; }
+"$ecorail" solve "${grid[@]}" --time "$t" --cruise grid --quiet --json saw.json > saw.txt ||
+  { echo "FAIL: solve --cruise grid"; cat saw.txt; fail=1; }
+python3 - "$t" <<'PY' || fail=1
+import json, sys
+t = float(sys.argv[1])
+h, g = json.load(open("hold.json")), json.load(open("saw.json"))
+for r in (h, g):
+    assert r["converged"] and abs(r["running_time_s"] - t) <= 0.001 and abs(r["stop_error_m"]) <= 0.5, r
+holds = lambda r: sum(1 for s in r["regimes"] if s["speed_hold"])
+assert holds(h) == 1, [s["regime"] for s in h["regimes"]]
+assert holds(g) > 1, [s["regime"] for s in g["regimes"]]
+assert "cruise_polish" in h["search"] and "cruise_polish" not in g["search"], (h["search"], g["search"])
+assert h["search"]["cruise_polish"]["saving_kJ"] > 0, h["search"]
+e_h, e_g = h["traction_energy_kJ"], g["traction_energy_kJ"]
+assert e_h <= e_g * (1 + 1e-4), (e_h, e_g)
+PY
+"$ecorail" solve "${grid[@]}" --time "$t" --cruise smooth --json bad.json > bad.txt 2>&1
+[ $? -eq 2 ] || { echo "FAIL: --cruise smooth not exit 2"; fail=1; }
+[ ! -e bad.json ] || { echo "FAIL: output written on bad input"; fail=1; }
+exit $fail
