@@ -35,6 +35,7 @@ void run_min_time(const MinTimeArgs& a) {
   j["to"] = p.route.to_name();
   j["distance_m"] = p.route.length_m();
   j["min_running_time_s"] = sim.running_time_s;
+  j["auxiliary_energy_kJ"] = output::auxiliary_energy_kJ(p.train, sim.running_time_s);
   // The per-second table is read from the run laid out as a trip.
   const output::Timeline timeline =
       output::trip_timeline(physics::Trip({{&p.route, &sim, 0.0}}, 0.0, p.train.regen_efficiency));

@@ -109,6 +109,7 @@ void run_solve(const SolveArgs& a) {
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
   nlohmann::json report = output::section_solution_json(solution);
   report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
+  report["auxiliary_energy_kJ"] = output::auxiliary_energy_kJ(p.train, s.running_time_s);
   report["provenance"] = run_provenance(p, a.problem,
                                         {{"time_s", a.time_s},
                                          {"min_regime_m", options.min_regime.min_length_m},

@@ -15,6 +15,7 @@
 #include "dp/journey_plan.hpp"
 #include "dp/text_format.hpp"
 #include "output/journey_json.hpp"
+#include "output/run_json.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -156,6 +157,8 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
                                          {"min_regime_m", args.min_regime.min_length_m},
                                          {"min_regime_s", args.min_regime.min_duration_s}});
   report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
+  report["auxiliary_energy_kJ"] =
+      output::auxiliary_energy_kJ(p.train, report.at("trip_time_s").get<double>());
   if (args.min_regime.active()) {
     report["min_regime"] = {{"min_length_m", args.min_regime.min_length_m},
                             {"min_duration_s", args.min_regime.min_duration_s},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
@@ -56,8 +57,14 @@ void check_train(const physics::Train& train, const std::string& file) {
   require_in(train.gravity_m_s2, kMinGravity_m_s2, kMaxGravity_m_s2, "m/s^2", file, "gravity_m_s2");
   require_in(units::ms_to_kmh(train.max_speed_ms), 1e-9, kMaxTrainSpeed_kmh, "km/h", file,
              "max_speed_kmh");
-  require_in(train.max_accel_m_s2, 1e-9, kMaxAccel_m_s2, "m/s^2", file, "max_accel_m_s2");
-  require_in(train.max_decel_m_s2, 1e-9, kMaxAccel_m_s2, "m/s^2", file, "max_decel_m_s2");
+  // An absent comfort limit is no limit (infinity, as a TTOBench train without one reads); a
+  // stated one must be plausible.
+  if (train.max_accel_m_s2 != std::numeric_limits<double>::infinity()) {
+    require_in(train.max_accel_m_s2, 1e-9, kMaxAccel_m_s2, "m/s^2", file, "max_accel_m_s2");
+  }
+  if (train.max_decel_m_s2 != std::numeric_limits<double>::infinity()) {
+    require_in(train.max_decel_m_s2, 1e-9, kMaxAccel_m_s2, "m/s^2", file, "max_decel_m_s2");
+  }
   // A negative coefficient makes resistance push the train: energy from nowhere.
   require_in(train.davis.A, 0.0, kMaxDavisA_N_per_kN, "N/kN", file, "davis.A");
   require_in(train.davis.B, 0.0, kMaxDavisB_N_per_kN_kmh, "N/kN per km/h", file, "davis.B");
@@ -72,6 +79,8 @@ void check_train(const physics::Train& train, const std::string& file) {
                          format_number(level_start_N / 1000.0) + " kN); got " +
                          format_number(start_N / 1000.0) + " kN");
   }
+  require_in(train.auxiliary_power_W / 1000.0, 0.0, kMaxAuxiliaryPower_kW, "kW", file,
+             "auxiliary_power_kW");
   if (!(brake_N + train.pneumatic_brake_N > 0.0)) {
     throw InputError(file, 0, "braking", "a braking force above 0 kN at some speed; got none");
   }

@@ -31,7 +31,8 @@ inline constexpr double kMaxAccel_m_s2 = 5.0;  // limits on dv/dt; metros use ab
 inline constexpr double kMaxDavisA_N_per_kN = 100.0;
 inline constexpr double kMaxDavisB_N_per_kN_kmh = 10.0;
 inline constexpr double kMaxDavisC_N_per_kN_kmh2 = 1.0;
-inline constexpr double kMaxForcePerMass_m_s2 = 20.0;  // envelope force / mass at any speed
+inline constexpr double kMaxAuxiliaryPower_kW = 10000.0;  // a long EMU draws about 500 kW
+inline constexpr double kMaxForcePerMass_m_s2 = 20.0;     // envelope force / mass at any speed
 inline constexpr double kMaxForce_kN = kMaxForcePerMass_m_s2 * kMaxMass_t;  // fit points, logs
 
 // Checks a loaded train against the ranges above (field names as in the train TOML): mass,

@@ -180,6 +180,9 @@ double mass_to_kg(double mass_t) {
 double kN_to_N(double f_kN) {
   return 1000.0 * f_kN;
 }
+double kW_to_W(double p_kW) {
+  return 1000.0 * p_kW;
+}
 double speed_to_ms(double v_kmh) {
   return units::kmh_to_ms(v_kmh);
 }
@@ -239,6 +242,79 @@ void write_envelope(std::string& out, const char* name, const physics::ForceEnve
   if (e.power_cap_kW() > 0.0) out += "power_cap_kW = " + toml_float(e.power_cap_kW()) + "\n";
 }
 
+// An efficiency map (docs/formats.md): speeds_kmh and forces_kN ascending (at least two each),
+// efficiency one row of values per speed, each value in (0, 1]. Absent: empty (the constant).
+physics::EfficiencyMap read_efficiency_map(const toml::table& root, const std::string& name,
+                                           const std::string& file) {
+  physics::EfficiencyMap map;
+  const toml::node* node = root.get(name);
+  if (node == nullptr) return map;
+  auto fail = [&](const std::string& key, const std::string& expected) {
+    throw InputError(file, 0, name + "." + key, expected);
+  };
+  if (!node->is_table()) {
+    throw InputError(file, 0, name, "a table with speeds_kmh, forces_kN and efficiency");
+  }
+  const toml::table& t = *node->as_table();
+  toml_util::check_keys(t, {"speeds_kmh", "forces_kN", "efficiency"}, file, 0, name + ".");
+  auto axis = [&](const char* key, double scale) {
+    const toml::array* a = t.get(key) ? t.get(key)->as_array() : nullptr;
+    if (a == nullptr || a->size() < 2) fail(key, "an array of at least two ascending numbers");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string where = std::string(key) + "[" + std::to_string(i + 1) + "]";
+      const double x = toml_util::number(a->get(i), file, 0, name + "." + where);
+      if (!(x >= 0.0) || (!out.empty() && !(x * scale > out.back()))) {
+        fail(where, "ascending numbers from 0 up; got " + format_number(x));
+      }
+      out.push_back(x * scale);
+    }
+    return out;
+  };
+  map.speeds_ms = axis("speeds_kmh", units::kmh_to_ms(1.0));
+  map.forces_N = axis("forces_kN", 1000.0);
+  const toml::array* rows = t.get("efficiency") ? t.get("efficiency")->as_array() : nullptr;
+  if (rows == nullptr || rows->size() != map.speeds_ms.size()) {
+    fail("efficiency", "one row per speed (" + std::to_string(map.speeds_ms.size()) + " rows)");
+  }
+  for (std::size_t i = 0; i < rows->size(); ++i) {
+    const std::string row_key = "efficiency[" + std::to_string(i + 1) + "]";
+    const toml::array* row = rows->get(i)->as_array();
+    if (row == nullptr || row->size() != map.forces_N.size()) {
+      fail(row_key, "one value per force (" + std::to_string(map.forces_N.size()) + " values)");
+    }
+    for (std::size_t j = 0; j < row->size(); ++j) {
+      const std::string where = row_key + "[" + std::to_string(j + 1) + "]";
+      const double x = toml_util::number(row->get(j), file, 0, name + "." + where);
+      if (!(x > 0.0 && x <= 1.0)) fail(where, "an efficiency in (0, 1]; got " + format_number(x));
+      map.values.push_back(x);
+    }
+  }
+  return map;
+}
+
+void write_efficiency_map(std::string& out, const char* name, const physics::EfficiencyMap& m) {
+  if (m.empty()) return;
+  out += std::string("\n[") + name + "]\nspeeds_kmh = [";
+  for (std::size_t i = 0; i < m.speeds_ms.size(); ++i) {
+    out += (i ? ", " : "") +
+           toml_float(file_value(m.speeds_ms[i], units::ms_to_kmh(m.speeds_ms[i]), speed_to_ms));
+  }
+  out += "]\nforces_kN = [";
+  for (std::size_t j = 0; j < m.forces_N.size(); ++j) {
+    out += (j ? ", " : "") + toml_float(file_value(m.forces_N[j], m.forces_N[j] / 1000.0, kN_to_N));
+  }
+  out += "]\nefficiency = [\n";
+  for (std::size_t i = 0; i < m.speeds_ms.size(); ++i) {
+    out += "  [";
+    for (std::size_t j = 0; j < m.forces_N.size(); ++j) {
+      out += (j ? ", " : "") + toml_float(m.values[i * m.forces_N.size() + j]);
+    }
+    out += "],\n";
+  }
+  out += "]\n";
+}
+
 }  // namespace
 
 physics::Train parse_train_toml(const std::string& text, const std::string& file_label) {
@@ -248,7 +324,8 @@ physics::Train parse_train_toml(const std::string& text, const std::string& file
       root,
       {"name", "mass_t", "rotating_mass_factor", "gravity_m_s2", "max_speed_kmh", "max_accel_m_s2",
        "max_decel_m_s2", "traction_efficiency", "regen_efficiency", "davis", "traction", "braking",
-       "pneumatic_brake_kN", "length_m", "tunnel_drag"},
+       "pneumatic_brake_kN", "length_m", "tunnel_drag", "auxiliary_power_kW",
+       "traction_efficiency_map", "regen_efficiency_map"},
       file_label, 0, "");
   physics::Train train;
   const toml::node* name = root.get("name");
@@ -318,6 +395,9 @@ physics::Train parse_train_toml(const std::string& text, const std::string& file
   } else if (root.contains("tunnel_drag")) {
     r.fail("tunnel_drag", "an array of pairs [m^2, kN/(km/h)^2]");
   }
+  train.auxiliary_power_W = kW_to_W(r.optional_number(root, "auxiliary_power_kW", 0.0));
+  train.traction_efficiency_map = read_efficiency_map(root, "traction_efficiency_map", file_label);
+  train.regen_efficiency_map = read_efficiency_map(root, "regen_efficiency_map", file_label);
   plausible::check_train(train, file_label);
   return train;
 }
@@ -368,12 +448,19 @@ std::string train_to_toml(const physics::Train& t) {
     }
     out += "]\n";
   }
+  if (t.auxiliary_power_W != 0.0) {
+    out += "auxiliary_power_kW = " +
+           toml_float(file_value(t.auxiliary_power_W, t.auxiliary_power_W / 1000.0, kW_to_W)) +
+           "\n";
+  }
   out += "\n[davis]\n";
   out += "A = " + toml_float(t.davis.A) + "\n";
   out += "B = " + toml_float(t.davis.B) + "\n";
   out += "C = " + toml_float(t.davis.C) + "\n";
   write_envelope(out, "traction", t.traction);
   write_envelope(out, "braking", t.braking);
+  write_efficiency_map(out, "traction_efficiency_map", t.traction_efficiency_map);
+  write_efficiency_map(out, "regen_efficiency_map", t.regen_efficiency_map);
   return out;
 }
 

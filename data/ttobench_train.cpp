@@ -124,10 +124,10 @@ physics::Train train_from_ttobench(const std::string& text, const std::string& f
   t.traction_efficiency = has_traction_eff ? efficiency(r, root, "efficiency traction") : 1.0;
   t.regen_efficiency = has_regen_eff ? efficiency(r, root, "efficiency reg brake") : 1.0;
 
+  // Constant auxiliary power, drawn at all times (reported; it changes no optimum at a fixed
+  // running time, see physics/train.hpp).
   if (root.contains("auxiliary power")) {
-    r.fail("auxiliary power",
-           "no auxiliary power: ecorail does not model it yet (refused "
-           "rather than ignored)");
+    t.auxiliary_power_W = positive(r, root, "auxiliary power", ttobench::kPower, true);
   }
   if (root.contains("tunnel resistance")) {
     const json& tr = r.object(root, "tunnel resistance", "");

@@ -28,7 +28,7 @@ struct Label {
 };
 
 struct StageResult {
-  double e = 0.0, t = 0.0, traction_J = 0.0, brake_J = 0.0;
+  double e = 0.0, t = 0.0, traction_J = 0.0, brake_J = 0.0, input_J = 0.0, regen_J = 0.0;
   bool ok = false;
 };
 
@@ -53,6 +53,8 @@ StageResult advance(const physics::Motion& motion, const physics::SpeedCap& cap,
     }
     r.traction_J += sub.traction_work_J;
     r.brake_J += sub.brake_work_J;
+    r.input_J += sub.traction_input_J;
+    r.regen_J += sub.regen_J;
     t += sub.time_s;
     s += sub.length_m;
     e = sub.e_end;
@@ -170,7 +172,8 @@ CappedSectionResult solve_capped_section(const SectionEngine& engine, const phys
           const StageResult r =
               advance(motion, cap, start_clock_s, s0, l.e, l.t, s1, c, o.substep_m, length);
           if (!r.ok || r.t + (length - s1) / v_top > time_budget_s + slack_s) continue;
-          const double cost = l.cost + energy_cost_J(objective, train, r.traction_J, r.brake_J);
+          const double cost = l.cost + energy_cost_J(objective, train, r.traction_J, r.brake_J,
+                                                     r.input_J, r.regen_J);
           const std::int64_t key = (static_cast<std::int64_t>(
                                         std::lround(physics::speed_from_e(r.e) / o.speed_bucket_ms))
                                     << 32) |

@@ -28,4 +28,16 @@ inline double energy_cost_J(Objective objective, const physics::Train& train,
   return objective == Objective::Net ? cost - train.regen_efficiency * brake_work_J : cost;
 }
 
+// The same for a train whose efficiencies may be maps over speed and force: then the energy
+// drawn and fed back are measured step by step (traction_input_J, regen_J) and the cost is
+// read from them; a train with constant efficiencies keeps the formula above, to the bit.
+inline double energy_cost_J(Objective objective, const physics::Train& train,
+                            double traction_work_J, double brake_work_J, double traction_input_J,
+                            double regen_J) {
+  if (!train.has_efficiency_maps()) {
+    return energy_cost_J(objective, train, traction_work_J, brake_work_J);
+  }
+  return objective == Objective::Net ? traction_input_J - regen_J : traction_input_J;
+}
+
 }  // namespace ecorail::dp

@@ -23,7 +23,8 @@ struct Scorer {
     const physics::Advance adv = motion.advance(s, e, grid.position(next), c, step);
     if (adv.stalled) return kInfeasible;
     const double energy =
-        energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J);
+        energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
+                      adv.traction_input_J, adv.regen_J);
     return energy + value.lambda * adv.time_s +
            value.at(grid, next, physics::speed_from_e(adv.e_end));
   }

@@ -76,7 +76,8 @@ physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram&
 
 double SectionEngine::energy_cost_J(const physics::SimulationResult& sim) const {
   return dp::energy_cost_J(options_.objective, train_, sim.energy.traction_work_J,
-                           sim.energy.brake_work_J);
+                           sim.energy.brake_work_J, sim.energy.traction_input_J,
+                           sim.energy.regen_J);
 }
 
 ValueFunction SectionEngine::sweep(double lambda) const {

@@ -47,7 +47,8 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
   auto fill = [&](int node, int i, int c, const physics::Advance& adv) {
     Transition& t = table_[static_cast<std::size_t>(node) * physics::kControlCount + c];
     if (adv.stalled) return;
-    t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J);
+    t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
+                               adv.traction_input_J, adv.regen_J);
     t.time_s = adv.time_s;
     grid.locate(i + 1, physics::speed_from_e(adv.e_end), &t.lower, &t.weight);
   };

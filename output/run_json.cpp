@@ -21,6 +21,10 @@ nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans) {
   return list;
 }
 
+double auxiliary_energy_kJ(const physics::Train& train, double on_line_s) {
+  return units::J_to_kJ(train.auxiliary_power_W * on_line_s);
+}
+
 nlohmann::json run_json(const physics::SimulationResult& sim) {
   return run_json(sim, dp::regime_spans(sim.trace));
 }

@@ -10,12 +10,17 @@
 #include "dp/regimes.hpp"
 #include "dp/section_solve.hpp"
 #include "physics/simulator.hpp"
+#include "physics/train.hpp"
 
 namespace ecorail::output {
 
 nlohmann::json regimes_json(const std::vector<dp::RegimeSpan>& spans);
 // Energies, time, stop error, overspeed and regimes of a re-simulated run; the regime spans are
 // taken from the trace unless the caller already has them.
+// Energy of the train's constant auxiliary power over on_line_s (running time and dwells): the
+// same for every way of driving in that time, so reported beside the optimum, not in it.
+double auxiliary_energy_kJ(const physics::Train& train, double on_line_s);
+
 nlohmann::json run_json(const physics::SimulationResult& sim);
 nlohmann::json run_json(const physics::SimulationResult& sim,
                         const std::vector<dp::RegimeSpan>& spans);

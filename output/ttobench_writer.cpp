@@ -177,6 +177,11 @@ std::string train_to_ttobench(const physics::Train& t) {
       return data::ttobench::force_to_specific(v * kN_factor, t);
     });
   };
+  if (t.has_efficiency_maps()) {
+    throw std::invalid_argument(
+        "TTOBench states constant efficiencies; this train's are maps over speed and force "
+        "(refused rather than approximated)");
+  }
   if (t.gravity_m_s2 != data::ttobench::kGravity_m_s2) {
     throw std::invalid_argument("TTOBench trains are read with g = 9.81 m/s^2; this train uses " +
                                 json_number(t.gravity_m_s2));
@@ -205,6 +210,7 @@ std::string train_to_ttobench(const physics::Train& t) {
   out += quantity("rolling resistance r2", "kN/(km/h)^2", davis(t.davis.C, 1000.0));
   out += quantity("efficiency traction", "-", t.traction_efficiency);
   out += quantity("efficiency reg brake", "-", t.regen_efficiency);
+  if (t.auxiliary_power_W > 0.0) out += quantity("auxiliary power", "W", t.auxiliary_power_W);
   if (!t.tunnel_drag.empty()) {
     out +=
         "  \"tunnel resistance\": {\"units\": {\"cross section\": \"m^2\", \"coefficient\": "

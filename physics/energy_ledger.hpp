@@ -26,6 +26,14 @@ struct EnergyLedger {
     regen_J += regen_efficiency * regen_brake_work_J;
     traction_input_J += traction_work_J_ / traction_efficiency;
   }
+  // The same with the energy drawn and fed back measured by the step (efficiency maps).
+  void add_measured(double traction_work_J_, double brake_work_J_, double traction_input_J_,
+                    double regen_J_) {
+    traction_work_J += traction_work_J_;
+    brake_work_J += brake_work_J_;
+    regen_J += regen_J_;
+    traction_input_J += traction_input_J_;
+  }
   // Energy drawn from the supply less the energy fed back.
   double net_J() const { return traction_input_J - regen_J; }
 };

@@ -152,6 +152,13 @@ Substep Motion::substep_impl(double s_m, double e0, double h, Control c, int rk_
     }
   }
   out.mean_force_N = out.length_m > 0.0 ? work / out.length_m : u1;
+  if (train_->has_efficiency_maps() && out.length_m > 0.0) {
+    const double v_mid = speed_from_e(0.5 * (e0 + out.e_end));
+    out.traction_input_J =
+        out.traction_work_J / train_->traction_efficiency_at(v_mid, out.mean_force_N);
+    out.regen_J = out.regen_brake_work_J *
+                  train_->regen_efficiency_at(v_mid, out.regen_brake_work_J / out.length_m);
+  }
   return out;
 }
 
@@ -183,6 +190,8 @@ Advance Motion::advance_impl(double s0, double e0, double s1, Control c, const S
     out.traction_work_J += sub.traction_work_J;
     out.brake_work_J += sub.brake_work_J;
     out.regen_brake_work_J += sub.regen_brake_work_J;
+    out.traction_input_J += sub.traction_input_J;
+    out.regen_J += sub.regen_J;
     e = sub.e_end;
     if (sub.stopped) {
       // A stop that lands on the end position (within a millimetre) is an arrival, not a stall.

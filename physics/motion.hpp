@@ -33,6 +33,11 @@ struct Substep {
   // The part of brake_work_J the regenerative brake carries (all of it unless the train has a
   // pneumatic brake): regeneration first, the pneumatic brake only for the excess.
   double regen_brake_work_J = 0.0;
+  // Energy drawn for the traction work and fed back from the regenerative braking work, by the
+  // efficiency maps at the substep's mean speed and force; set only for a train with maps
+  // (Train::has_efficiency_maps), 0 otherwise (the constants apply to the sums, as before).
+  double traction_input_J = 0.0;
+  double regen_J = 0.0;
   double mean_force_N = 0.0;  // work / length, signed (traction positive)
   Regime regime = Regime::Coast;
   bool stopped = false;       // speed reached zero inside the substep
@@ -46,7 +51,9 @@ struct Advance {
   double traction_work_J = 0.0;
   double brake_work_J = 0.0;
   double regen_brake_work_J = 0.0;  // see Substep
-  bool stalled = false;             // stopped before reaching the end position
+  double traction_input_J = 0.0;    // see Substep (trains with efficiency maps only)
+  double regen_J = 0.0;
+  bool stalled = false;  // stopped before reaching the end position
 };
 
 class Motion {

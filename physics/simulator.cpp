@@ -64,8 +64,13 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
     } else {
       sub = motion.substep(s, e, next - s, c, opt.rk_order);
     }
-    out.energy.add(sub.traction_work_J, sub.brake_work_J, sub.regen_brake_work_J,
-                   train.traction_efficiency, train.regen_efficiency);
+    if (train.has_efficiency_maps()) {
+      out.energy.add_measured(sub.traction_work_J, sub.brake_work_J, sub.traction_input_J,
+                              sub.regen_J);
+    } else {
+      out.energy.add(sub.traction_work_J, sub.brake_work_J, sub.regen_brake_work_J,
+                     train.traction_efficiency, train.regen_efficiency);
+    }
     t += sub.time_s;
     s = sub.stopped ? s + sub.length_m : next;  // exact positions: no drift over many steps
     e = sub.e_end;

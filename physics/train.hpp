@@ -27,6 +27,18 @@ struct TunnelDrag {
   double C_kN_per_kmh2 = 0.0;  // added to the train's quadratic resistance, in kN / (km/h)^2
 };
 
+// An efficiency as a table over speed and the magnitude of the force at the wheel (traction
+// or regenerative braking): bilinear between the table's points, held at its edges outside.
+// Empty: the train's constant efficiency applies. Energy drawn (or fed back) is then measured
+// substep by substep at the substep's mean speed and force, and the DP minimises that.
+struct EfficiencyMap {
+  std::vector<double> speeds_ms;  // ascending, at least 2
+  std::vector<double> forces_N;   // ascending, from 0 up, at least 2
+  std::vector<double> values;     // speeds_ms.size() x forces_N.size(), row by speed, in (0, 1]
+  bool empty() const { return values.empty(); }
+  double at(double v_ms, double force_N) const;
+};
+
 struct Train {
   std::string name;
   double mass_kg = 0.0;
@@ -47,6 +59,24 @@ struct Train {
   // passed it and averages gradient, curve and tunnel forces over the train.
   double length_m = 0.0;
   std::vector<TunnelDrag> tunnel_drag;  // by cross-section, ascending; empty = no data
+  // Auxiliary power (lighting, air conditioning, compressors), drawn at all times, dwells
+  // included. At a fixed running time it adds the same energy to every way of driving, so it
+  // changes no optimum; it is reported (auxiliary_energy_kJ) and counted by the power network.
+  double auxiliary_power_W = 0.0;
+  // Efficiencies over speed and force where the data give them (empty: the constants above).
+  EfficiencyMap traction_efficiency_map;
+  EfficiencyMap regen_efficiency_map;
+
+  bool has_efficiency_maps() const {
+    return !traction_efficiency_map.empty() || !regen_efficiency_map.empty();
+  }
+  double traction_efficiency_at(double v_ms, double force_N) const {
+    return traction_efficiency_map.empty() ? traction_efficiency
+                                           : traction_efficiency_map.at(v_ms, force_N);
+  }
+  double regen_efficiency_at(double v_ms, double force_N) const {
+    return regen_efficiency_map.empty() ? regen_efficiency : regen_efficiency_map.at(v_ms, force_N);
+  }
 
   double effective_mass_kg() const { return mass_kg * (1.0 + rotating_mass_factor); }
   // Converts a specific resistance in N/kN into a force in N for this train's weight.

@@ -126,7 +126,8 @@ Advice Advisor::advise(int layer, double s_m, double v_ms) const {
     const double v_end = physics::speed_from_e(adv.e_end);
     const double rest = table_.interpolate(L.cost_to_go_J, next, v_end);
     if (!dp::is_feasible(rest)) continue;
-    const double q = dp::energy_cost_J(objective, train, adv.traction_work_J, adv.brake_work_J) +
+    const double q = dp::energy_cost_J(objective, train, adv.traction_work_J, adv.brake_work_J,
+                                       adv.traction_input_J, adv.regen_J) +
                      L.lambda_J_per_s * adv.time_s + rest;
     // Strictly better beyond the tie tolerance: earlier (preferred) controls win ties.
     if (!found || q < best_q - (kTieRelative * std::abs(best_q) + kTieAbsolute_J)) {
