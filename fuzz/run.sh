@@ -32,6 +32,7 @@ for t in stations gradients speed_limits curves; do
 done
 seed fuzz_line_toml "$src/fuzz/seeds/line_toml/two_stations.toml"
 seed fuzz_train_toml "$src/data/contest/train.toml"
+for f in "$src"/fuzz/seeds/train_toml/*.toml; do seed fuzz_train_toml "$f"; done
 for f in "$src"/data/contest/seed_profile_*.csv "$src"/fuzz/seeds/log/*.csv; do seed fuzz_log "$f"; done
 for f in "$src"/fitting/data/*.csv "$src"/fuzz/seeds/fit_points/*.csv; do seed fuzz_fit_points "$f"; done
 for f in "$src"/fuzz/seeds/policy/*.bin; do seed fuzz_policy "$f"; done
