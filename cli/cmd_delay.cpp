@@ -16,6 +16,7 @@
 #include "cli/errors.hpp"
 #include "cli/journey_solve.hpp"
 #include "cli/output_options.hpp"
+#include "cli/plan_input.hpp"
 #include "cli/problem_options.hpp"
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
@@ -51,47 +52,6 @@ struct DelayArgs {
 
 [[noreturn]] void bad(const std::string& flag, const std::string& expected) {
   throw data::InputError("command line", 0, flag, expected);
-}
-
-// The timetable CSV of `ecorail timetable ... --csv` (columns train, station, arrival_s,
-// departure_s; others ignored): rows grouped by train, stations in the order of their rows.
-recovery::Plan read_plan(const std::string& file) {
-  const data::CsvTable table = data::CsvTable::read(file);
-  const std::size_t c_train = table.column("train"), c_station = table.column("station");
-  const std::size_t c_arr = table.column("arrival_s"), c_dep = table.column("departure_s");
-  std::map<long, std::vector<const data::CsvRow*>> by_train;
-  for (const data::CsvRow& row : table.rows()) {
-    const double k = table.number(row, c_train);
-    if (k != std::floor(k) || k < 1 || k > 1e6)
-      throw data::InputError(file, row.row, "train", "a train number >= 1");
-    by_train[static_cast<long>(k)].push_back(&row);
-  }
-  if (by_train.empty()) throw data::InputError(file, 0, "train", "at least one train's rows");
-  recovery::Plan plan;
-  long expected = 1;
-  for (const auto& [k, rows] : by_train) {
-    if (k != expected)
-      throw data::InputError(file, rows.front()->row, "train",
-                             "trains numbered 1, 2, ... without gaps; train " +
-                                 std::to_string(expected) + " is missing");
-    ++expected;
-    recovery::TrainStops t;
-    std::vector<std::string> names;
-    for (const data::CsvRow* row : rows) {
-      names.push_back(table.text(*row, c_station));
-      t.arrival_s.push_back(table.number(*row, c_arr));
-      t.departure_s.push_back(table.number(*row, c_dep));
-    }
-    if (plan.stations.empty()) plan.stations = names;
-    if (names != plan.stations)
-      throw data::InputError(file, rows.front()->row, "station",
-                             "the same stations for every train (train " + std::to_string(k) +
-                                 " differs from train 1)");
-    plan.trains.push_back(std::move(t));
-  }
-  if (const std::string why = plan.problem(); !why.empty())
-    throw data::InputError(file, 0, "arrival_s/departure_s", "a timetable that holds: " + why);
-  return plan;
 }
 
 nlohmann::json number_or_null(double v) {
@@ -263,17 +223,7 @@ void run_delay(const DelayArgs& a) {
   if (!a.reference) {
     plan = read_plan(a.plan_file);
     stops = plan.stations;
-    std::vector<std::string> line_stops;
-    try {
-      line_stops = data::stops_between(p.line, stops.front(), stops.back());
-    } catch (const data::InputError&) {
-      throw data::InputError(a.plan_file, 0, "station",
-                             "stations of the line; got " + stops.front() + " .. " + stops.back());
-    }
-    if (line_stops != stops)
-      throw data::InputError(a.plan_file, 0, "station",
-                             "every station of the line between " + stops.front() + " and " +
-                                 stops.back() + ", in the order of travel");
+    check_plan_stations(p.line, plan, a.plan_file);
   } else {
     stops = data::stops_between(p.line, p.line.stations.front().name, p.line.stations.back().name);
   }

@@ -16,6 +16,8 @@ void add_frontier_command(CLI::App& app);
 void add_timetable_command(CLI::App& app);
 // `ecorail delay`: recovery of one late departure (cli/cmd_delay.cpp, docs/delays.md).
 void add_delay_command(CLI::App& app);
+// `ecorail montecarlo`: service days under random delays (cli/cmd_montecarlo.cpp).
+void add_montecarlo_command(CLI::App& app);
 // `ecorail export`: the line and train as TTOBench JSON (cli/cmd_export.cpp).
 void add_export_command(CLI::App& app);
 

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   ecorail::cli::add_frontier_command(app);
   ecorail::cli::add_timetable_command(app);
   ecorail::cli::add_delay_command(app);
+  ecorail::cli::add_montecarlo_command(app);
   ecorail::cli::add_export_command(app);
   // Errors become one line and an exit code in one place (cli/errors.cpp).
   return ecorail::cli::run_reporting_errors(app, argc, argv);

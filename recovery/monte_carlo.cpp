@@ -1,0 +1,360 @@
+#include "recovery/monte_carlo.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include "service/separation.hpp"
+#include "timetable/fleet_pattern.hpp"
+
+namespace ecorail::recovery {
+
+const char* recovery_policy_name(RecoveryPolicy p) {
+  return p == RecoveryPolicy::Exact ? "exact" : "rule";
+}
+
+bool MonteCarloOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* text) {
+    if (error != nullptr) *error = text;
+    return false;
+  };
+  if (!delays.IsValid(error)) return false;
+  if (!(early_s >= 0.0 && early_s <= 600.0))
+    return fail("MonteCarloOptions::early_s must lie in [0, 600] s");
+  if (!(min_dwell_s >= 0.0 && min_dwell_s < 1e5))
+    return fail("MonteCarloOptions::min_dwell_s must lie in [0, 1e5) s");
+  if (!(takeover_s > 0.0 && takeover_s <= 86400.0))
+    return fail("MonteCarloOptions::takeover_s must lie in (0, 86400] s");
+  if (!(punctual_s >= 0.0 && punctual_s <= 3600.0))
+    return fail("MonteCarloOptions::punctual_s must lie in [0, 3600] s");
+  if (!(on_time_tolerance_s > 0.0 && on_time_tolerance_s <= 1.0))
+    return fail("MonteCarloOptions::on_time_tolerance_s must lie in (0, 1] s");
+  if (!(separation_s <= 3600.0) || std::isnan(separation_s))
+    return fail("MonteCarloOptions::separation_s must be at most 3600 s (< 0: from the plan)");
+  if (!(knot_step_s >= 0.05 && knot_step_s <= 30.0))
+    return fail("MonteCarloOptions::knot_step_s must lie in [0.05, 30] s");
+  const double ticks = 1.0 / bin_step_s;
+  if (!(bin_step_s >= 0.001 && bin_step_s <= 1.0) || std::fabs(ticks - std::round(ticks)) > 1e-9)
+    return fail("MonteCarloOptions::bin_step_s must divide one second (0.001 to 1 s)");
+  return true;
+}
+
+std::string MonteCarloSummary::BriefReport() const {
+  const MonteCarloStatistics& s = statistics;
+  char buf[900];
+  std::snprintf(buf, sizeof buf,
+                "ecorail montecarlo days %llu-%llu: punctuality %.4f +- %.4f, mean lateness %.3f "
+                "+- %.3f s, p95 lateness %.2f +- %.2f s, recovery %.1f +- %.1f s, traction %.1f "
+                "+- %.1f kJ, substation %.1f +- %.1f kJ (plan %.1f kJ), taken over %.3f a day; "
+                "%.2f s wall, %s",
+                static_cast<unsigned long long>(first_day),
+                static_cast<unsigned long long>(last_day > 0 ? last_day - 1 : 0),
+                s.punctuality.mean, s.punctuality.ci95, s.mean_lateness_s.mean,
+                s.mean_lateness_s.ci95, s.p95_lateness_s.mean, s.p95_lateness_s.ci95,
+                s.recovery_time_s.mean, s.recovery_time_s.ci95, s.traction_kJ.mean,
+                s.traction_kJ.ci95, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
+                s.takeovers.mean, wall_s, std::string(dp::status_word(termination, 0)).c_str());
+  return std::string(buf) + "\n";
+}
+
+std::string MonteCarloSummary::FullReport() const {
+  const MonteCarloStatistics& s = statistics;
+  std::string out = BriefReport();
+  char buf[1600];
+  std::snprintf(
+      buf, sizeof buf,
+      "  days                 %lld (threads %d)\n  separation           %.1f s\n"
+      "  section runs         %zu\n  punctuality          %.5f +- %.5f (pooled %.5f)\n"
+      "  mean lateness        %.4f +- %.4f s\n  p95 lateness         %.3f +- %.3f s\n"
+      "  recovery time        %.2f +- %.2f s (%lld recoveries)\n"
+      "  traction             %.1f +- %.1f kJ (plan %.1f kJ)\n"
+      "  substation           %.1f +- %.1f kJ (plan %.1f kJ)\n"
+      "  primary delays       %.2f a day (%.2f over 10 s), knock-on %.2f a day\n"
+      "  taken over           %.3f a day (%.3f arrivals), not back by the last station %.3f\n"
+      "  termination          %s\n",
+      static_cast<long long>(s.days), threads, separation_s, section_runs, s.punctuality.mean,
+      s.punctuality.ci95, s.pooled_punctuality, s.mean_lateness_s.mean, s.mean_lateness_s.ci95,
+      s.p95_lateness_s.mean, s.p95_lateness_s.ci95, s.recovery_time_s.mean, s.recovery_time_s.ci95,
+      static_cast<long long>(s.recoveries), s.traction_kJ.mean, s.traction_kJ.ci95,
+      plan_traction_kJ, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
+      s.primary_delays.mean, s.tail_delays.mean, s.knock_on_delays.mean, s.takeovers.mean,
+      s.arrivals_taken_over.mean, s.unrecovered_episodes.mean,
+      std::string(dp::termination_name(termination)).c_str());
+  return out + buf;
+}
+
+double separation_time_s(const dp::SectionLibrary& library, const Plan& plan, SectionRuns& runs) {
+  const std::size_t n = plan.sections();
+  std::vector<const physics::SimulationResult*> sims;
+  std::vector<double> dwells;
+  for (std::size_t j = 0; j < n; ++j) {
+    sims.push_back(
+        &runs.piece_with_sim(j, std::max(plan.running_time_s(0, j), runs.min_time_s(j))).sim);
+    if (j + 1 < n) dwells.push_back(plan.dwell_s(0, j + 1));
+  }
+  const physics::Trip trip = timetable::trip_from_runs(library, sims, dwells);
+  const service::SeparationOptions sep;
+  const double b = service::default_separation_braking_m_s2(library.train());
+  auto exceeded = [&](double h) {
+    return service::scan_separation(trip, trip.shifted(h), b, sep).exceeded;
+  };
+  double lo = 0.0, hi = 900.0;
+  if (exceeded(hi)) return hi;
+  while (hi - lo > 0.05) {
+    const double mid = 0.5 * (lo + hi);
+    (exceeded(mid) ? lo : hi) = mid;
+  }
+  return std::ceil(hi * 10.0 - 1e-9) / 10.0;
+}
+
+MonteCarlo::MonteCarlo(const dp::SectionLibrary& library, const Plan& plan,
+                       const MonteCarloOptions& options, SectionRuns& runs)
+    : library_(library), plan_(plan), options_(options), runs_(runs) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  if (const std::string p = plan.problem(); !p.empty()) throw std::invalid_argument(p);
+  const std::size_t n = plan.sections();
+  if (n == 0 || plan.trains.empty()) throw std::invalid_argument("a plan with trains and sections");
+  if (library.size() != n || runs.sections() != n)
+    throw std::invalid_argument("the plan has " + std::to_string(n) +
+                                " sections, the line's library " + std::to_string(library.size()));
+  dmin_.assign(plan.trains.size(), std::vector<double>(n + 1, 0.0));
+  for (std::size_t k = 0; k < plan.trains.size(); ++k)
+    for (std::size_t j = 1; j < n; ++j)
+      dmin_[k][j] = std::min(plan.dwell_s(k, j), options.min_dwell_s);
+  std::vector<double> upper(n, 0.0);
+  std::vector<std::vector<double>> exact(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t k = 0; k < plan.trains.size(); ++k) {
+      const double r = plan.running_time_s(k, j);
+      if (exact[j].empty() || std::fabs(exact[j].back() - r) > 5e-4) exact[j].push_back(r);
+      upper[j] = std::max(upper[j], r + options.early_s);
+    }
+    std::sort(exact[j].begin(), exact[j].end());
+    exact[j].erase(std::unique(exact[j].begin(), exact[j].end(),
+                               [](double a, double b) { return std::fabs(a - b) < 5e-4; }),
+                   exact[j].end());
+  }
+  runs.ensure_all(upper, exact);
+  separation_s_ =
+      options.separation_s >= 0.0 ? options.separation_s : separation_time_s(library, plan, runs);
+  horizon_s_ = 0.0;
+  for (const TrainStops& t : plan.trains) horizon_s_ = std::max(horizon_s_, t.arrival_s.back());
+  horizon_s_ += 3600.0;
+}
+
+void MonteCarlo::allocate(std::size_t k, std::size_t a, std::size_t b, double start_s, double end_s,
+                          std::vector<double>& t) const {
+  const TrainStops& st = plan_.trains[k];
+  double dwells = 0.0;
+  for (std::size_t m = a + 1; m < b; ++m) dwells += dmin_[k][m];
+  std::vector<double> lo, hi, part;
+  std::vector<std::size_t> sections;
+  for (std::size_t j = a; j < b; ++j) {
+    sections.push_back(j);
+    lo.push_back(runs_.min_time_s(j));
+    hi.push_back(std::max(runs_.min_time_s(j), runs_.last_knot_s(j)));
+  }
+  split_by_price(runs_, sections, lo, hi, end_s - start_s - dwells, part);
+  for (std::size_t j = a; j < b; ++j) t[j] = part[j - a];
+  if (b - a < 2) return;
+  // No arrival so early that the train would leave before its timetabled departure less the
+  // early allowance: where the split breaks that, the most broken stop binds; split there.
+  double arrival = start_s, worst = 1e-9, bound = 0.0;
+  std::size_t at = 0;
+  for (std::size_t m = a + 1; m < b; ++m) {
+    arrival += t[m - 1];
+    const double least = st.departure_s[m] - options_.early_s - dmin_[k][m];
+    if (least - arrival > worst) {
+      worst = least - arrival;
+      at = m;
+      bound = least;
+    }
+    arrival += dmin_[k][m];
+  }
+  if (at == 0) return;
+  allocate(k, a, at, start_s, bound, t);
+  allocate(k, at, b, bound + dmin_[k][at], end_s, t);
+}
+
+double MonteCarlo::exact_time(std::size_t k, std::size_t j, double departure_s,
+                              bool* recoverable) const {
+  return exact_target(k, j, departure_s, recoverable, nullptr);
+}
+
+double MonteCarlo::exact_target(std::size_t k, std::size_t j, double departure_s, bool* recoverable,
+                                std::size_t* target) const {
+  const TrainStops& st = plan_.trains[k];
+  const std::size_t n = plan_.sections();
+  std::size_t e = n + 1;
+  double dep = departure_s;
+  for (std::size_t m = j; m < n; ++m) {
+    const double arr = dep + runs_.min_time_s(m);
+    if (arr <= st.arrival_s[m + 1] + 1e-9) {
+      e = m + 1;
+      break;
+    }
+    if (m + 1 < n) dep = std::max(st.departure_s[m + 1] - options_.early_s, arr + dmin_[k][m + 1]);
+  }
+  if (recoverable != nullptr) *recoverable = e <= n;
+  if (target != nullptr) *target = e;
+  if (e > n) return runs_.min_time_s(j);
+  std::vector<double> t(n, 0.0);
+  allocate(k, j, e, departure_s, st.arrival_s[e], t);
+  return t[j];
+}
+
+DayRecord MonteCarlo::simulate_day(std::uint64_t day,
+                                   const std::vector<ForcedDelay>* forced) const {
+  thread_local DayBins bins;
+  bins.step_s = runs_.bin_step_s();
+  bins.reset(static_cast<std::size_t>(std::ceil(horizon_s_ / bins.step_s)));
+  const std::size_t n = plan_.sections(), trains = plan_.trains.size();
+  const bool exact = options_.recovery == RecoveryPolicy::Exact;
+  const double tol = options_.on_time_tolerance_s;
+  DayRecord r;
+  r.day = day;
+  r.station_arrivals.assign(n + 1, 0);
+  r.station_punctual.assign(n + 1, 0);
+  r.lateness_histogram.assign(kLatenessHistogramBins, 0);
+  std::vector<double> lateness;
+  lateness.reserve(trains * n);
+  // The last train that left each station: its actual and its planned departure.
+  std::vector<double> last_dep(n, -1e300), last_planned(n, -1e300);
+  for (std::size_t k = 0; k < trains; ++k) {
+    const TrainStops& st = plan_.trains[k];
+    double arrival = st.departure_s[0];
+    bool in_recovery = false, episode = false;
+    double episode_start = 0.0;
+    bool served = true;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double d = st.departure_s[j];
+      const double ready = j == 0 ? d : arrival + dmin_[k][j];
+      double dep = std::max(ready, exact && in_recovery ? d - options_.early_s : d);
+      // Knock-on: no sooner than the separation after the train ahead (or the plan's own
+      // headway where that is shorter: the plan was made under the cap).
+      if (last_dep[j] > -1e299) {
+        const double gap = std::min(separation_s_, d - last_planned[j]);
+        if (last_dep[j] + gap > dep + 1e-9) {
+          dep = last_dep[j] + gap;
+          ++r.knock_on_delays;
+        }
+      }
+      DelayDraw delay;
+      if (forced != nullptr) {
+        for (const ForcedDelay& f : *forced)
+          if (f.train == k && f.station == j) {
+            delay.delay_s = f.delay_s;
+            delay.kind = f.delay_s > options_.delays.small_max_s ? DelayKind::Tail
+                         : f.delay_s > 0.0                       ? DelayKind::Small
+                                                                 : DelayKind::None;
+          }
+      } else {
+        delay = draw_delay(options_.delays, options_.seed, day, k, j);
+      }
+      if (delay.delay_s > 0.0) ++r.primary_delays;
+      if (delay.kind == DelayKind::Tail) ++r.tail_delays;
+      if (delay.delay_s > options_.takeover_s) {
+        // Not recovered: the next service takes over; this train runs no further.
+        ++r.takeovers;
+        r.arrivals_taken_over += static_cast<std::int64_t>(n - j);
+        served = false;
+        break;
+      }
+      dep += delay.delay_s;
+      last_dep[j] = dep;
+      last_planned[j] = d;
+      const double late = dep - d;
+      if (!episode && late > tol) {
+        episode = true;
+        episode_start = dep;
+      }
+      const double planned = plan_.running_time_s(k, j);
+      double t = planned;
+      if (late > 1e-9 || in_recovery) {
+        if (exact) {
+          bool recoverable = false;
+          std::size_t target = n + 1;
+          t = exact_target(k, j, dep, &recoverable, &target);
+          in_recovery = !recoverable || target > j + 1;
+        } else {
+          const double m = runs_.min_time_s(j);
+          t = late <= planned - m ? planned - std::max(0.0, late) : m;
+        }
+      }
+      t = std::clamp(t, runs_.min_time_s(j), std::max(runs_.min_time_s(j), runs_.last_knot_s(j)));
+      runs_.lay(j, t, dep, bins);
+      arrival = dep + t;
+      const double arr_late = arrival - st.arrival_s[j + 1];
+      const double lat = std::max(0.0, arr_late);
+      ++r.arrivals;
+      ++r.station_arrivals[j + 1];
+      if (arr_late <= options_.punctual_s + 1e-9) {
+        ++r.punctual;
+        ++r.station_punctual[j + 1];
+      }
+      r.lateness_sum_s += lat;
+      r.max_lateness_s = std::max(r.max_lateness_s, lat);
+      ++r.lateness_histogram[std::min<std::size_t>(kLatenessHistogramBins - 1,
+                                                   static_cast<std::size_t>(lat))];
+      lateness.push_back(lat);
+      if (episode && arr_late <= tol) {
+        ++r.recoveries;
+        r.recovery_time_sum_s += arrival - episode_start;
+        episode = false;
+      }
+    }
+    if (served && episode) ++r.unrecovered_episodes;
+  }
+  if (!lateness.empty()) {
+    const std::size_t rank = (95 * lateness.size() + 99) / 100;  // nearest rank, 1-based
+    std::nth_element(lateness.begin(), lateness.begin() + static_cast<long>(rank - 1),
+                     lateness.end());
+    r.p95_lateness_s = lateness[rank - 1];
+  }
+  const std::int64_t traction = bins.traction_uJ(), regen = bins.regen_uJ(), used = bins.used_uJ();
+  r.traction_kJ = static_cast<double>(traction) / 1e9;
+  r.regen_kJ = static_cast<double>(regen) / 1e9;
+  r.used_regen_kJ = static_cast<double>(used) / 1e9;
+  r.substation_kJ = static_cast<double>(traction - used) / 1e9;
+  return r;
+}
+
+DayRecord MonteCarlo::plan_day() const {
+  const std::vector<ForcedDelay> none;
+  return simulate_day(0, &none);
+}
+
+std::vector<DayRecord> MonteCarlo::run_days(std::uint64_t first, std::uint64_t last, int threads,
+                                            const std::function<void(int, int)>& progress) const {
+  if (last < first) throw std::invalid_argument("run_days: last day before the first");
+  const long count = static_cast<long>(last - first);
+  std::vector<DayRecord> out(static_cast<std::size_t>(count));
+  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  std::atomic<int> done{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+  for (long i = 0; i < count; ++i) {
+    try {
+      out[static_cast<std::size_t>(i)] = simulate_day(first + static_cast<std::uint64_t>(i));
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+    const int d = ++done;
+    if (progress && omp_get_thread_num() == 0) progress(d, static_cast<int>(count));
+  }
+  if (error) std::rethrow_exception(error);
+  return out;
+}
+
+}  // namespace ecorail::recovery

@@ -1,0 +1,263 @@
+#include "recovery/monte_carlo_stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace ecorail::recovery {
+
+double t_quantile_975(std::int64_t dof) {
+  static const double table[] = {0.0,   12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365,
+                                 2.306, 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+                                 2.120, 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069,
+                                 2.064, 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+  if (dof < 1) return 0.0;
+  if (dof <= 30) return table[dof];
+  const double z = 1.959963984540054, v = static_cast<double>(dof);
+  const double z3 = z * z * z, z5 = z3 * z * z, z7 = z5 * z * z;
+  return z + (z3 + z) / (4 * v) + (5 * z5 + 16 * z3 + 3 * z) / (96 * v * v) +
+         (3 * z7 + 19 * z5 + 17 * z3 - 15 * z) / (384 * v * v * v);
+}
+
+Estimate estimate(const std::vector<double>& values) {
+  Estimate e;
+  e.n = static_cast<std::int64_t>(values.size());
+  if (e.n == 0) return e;
+  double sum = 0.0;
+  for (double v : values) sum += v;  // in day order
+  e.mean = sum / static_cast<double>(e.n);
+  if (e.n < 2) return e;
+  double ss = 0.0;
+  for (double v : values) ss += (v - e.mean) * (v - e.mean);
+  e.sd = std::sqrt(ss / static_cast<double>(e.n - 1));
+  e.ci95 = t_quantile_975(e.n - 1) * e.sd / std::sqrt(static_cast<double>(e.n));
+  return e;
+}
+
+std::vector<std::int64_t> pooled_histogram(const std::vector<DayRecord>& records) {
+  std::vector<std::int64_t> h(kLatenessHistogramBins, 0);
+  for (const DayRecord& r : records)
+    for (std::size_t i = 0; i < r.lateness_histogram.size() && i < h.size(); ++i)
+      h[i] += r.lateness_histogram[i];
+  return h;
+}
+
+MonteCarloStatistics summarise(const std::vector<DayRecord>& records,
+                               const std::vector<std::int64_t>& histogram) {
+  MonteCarloStatistics s;
+  s.days = static_cast<std::int64_t>(records.size());
+  auto field = [&](auto get) {
+    std::vector<double> v;
+    v.reserve(records.size());
+    for (const DayRecord& r : records) v.push_back(static_cast<double>(get(r)));
+    return estimate(v);
+  };
+  s.punctuality = field([](const DayRecord& r) { return r.punctuality(); });
+  s.mean_lateness_s = field([](const DayRecord& r) { return r.mean_lateness_s(); });
+  s.p95_lateness_s = field([](const DayRecord& r) { return r.p95_lateness_s; });
+  s.max_lateness_s = field([](const DayRecord& r) { return r.max_lateness_s; });
+  {
+    std::vector<double> v;
+    for (const DayRecord& r : records)
+      if (r.recoveries > 0) v.push_back(r.recovery_time_sum_s / static_cast<double>(r.recoveries));
+    s.recovery_time_s = estimate(v);
+  }
+  s.traction_kJ = field([](const DayRecord& r) { return r.traction_kJ; });
+  s.substation_kJ = field([](const DayRecord& r) { return r.substation_kJ; });
+  s.used_regen_kJ = field([](const DayRecord& r) { return r.used_regen_kJ; });
+  s.primary_delays = field([](const DayRecord& r) { return r.primary_delays; });
+  s.tail_delays = field([](const DayRecord& r) { return r.tail_delays; });
+  s.knock_on_delays = field([](const DayRecord& r) { return r.knock_on_delays; });
+  s.takeovers = field([](const DayRecord& r) { return r.takeovers; });
+  s.arrivals_taken_over = field([](const DayRecord& r) { return r.arrivals_taken_over; });
+  s.unrecovered_episodes = field([](const DayRecord& r) { return r.unrecovered_episodes; });
+  for (const DayRecord& r : records) {
+    s.arrivals += r.arrivals;
+    s.punctual += r.punctual;
+    s.recoveries += r.recoveries;
+    if (s.station_arrivals.size() < r.station_arrivals.size()) {
+      s.station_arrivals.resize(r.station_arrivals.size(), 0);
+      s.station_punctual.resize(r.station_arrivals.size(), 0);
+    }
+    for (std::size_t i = 0; i < r.station_arrivals.size(); ++i) {
+      s.station_arrivals[i] += r.station_arrivals[i];
+      s.station_punctual[i] += r.station_punctual[i];
+    }
+  }
+  s.pooled_punctuality =
+      s.arrivals > 0 ? static_cast<double>(s.punctual) / static_cast<double>(s.arrivals) : 1.0;
+  s.lateness_histogram = histogram;
+  std::int64_t total = 0;
+  for (std::int64_t c : histogram) total += c;
+  if (total > 0) {
+    // Nearest rank: the bin holding the ceil(0.95 total)-th smallest lateness.
+    const std::int64_t rank = (95 * total + 99) / 100;
+    std::int64_t seen = 0;
+    for (std::size_t i = 0; i < histogram.size(); ++i) {
+      seen += histogram[i];
+      if (seen >= rank) {
+        s.pooled_p95_lateness_s = static_cast<double>(i + 1);
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+namespace {
+
+nlohmann::json estimate_json(const Estimate& e) {
+  return {{"mean", e.mean}, {"ci95", e.ci95}, {"sd", e.sd}, {"n", e.n}};
+}
+
+nlohmann::json day_json(const DayRecord& r) {
+  return {{"day", r.day},
+          {"arrivals", r.arrivals},
+          {"punctual", r.punctual},
+          {"station_arrivals", r.station_arrivals},
+          {"station_punctual", r.station_punctual},
+          {"lateness_sum_s", r.lateness_sum_s},
+          {"p95_lateness_s", r.p95_lateness_s},
+          {"max_lateness_s", r.max_lateness_s},
+          {"recoveries", r.recoveries},
+          {"recovery_time_sum_s", r.recovery_time_sum_s},
+          {"unrecovered_episodes", r.unrecovered_episodes},
+          {"primary_delays", r.primary_delays},
+          {"tail_delays", r.tail_delays},
+          {"knock_on_delays", r.knock_on_delays},
+          {"takeovers", r.takeovers},
+          {"arrivals_taken_over", r.arrivals_taken_over},
+          {"traction_kJ", r.traction_kJ},
+          {"regen_kJ", r.regen_kJ},
+          {"used_regen_kJ", r.used_regen_kJ},
+          {"substation_kJ", r.substation_kJ}};
+}
+
+DayRecord day_from_json(const nlohmann::json& j) {
+  DayRecord r;
+  r.day = j.at("day").get<std::uint64_t>();
+  r.arrivals = j.at("arrivals").get<std::int64_t>();
+  r.punctual = j.at("punctual").get<std::int64_t>();
+  r.station_arrivals = j.at("station_arrivals").get<std::vector<std::int64_t>>();
+  r.station_punctual = j.at("station_punctual").get<std::vector<std::int64_t>>();
+  r.lateness_sum_s = j.at("lateness_sum_s").get<double>();
+  r.p95_lateness_s = j.at("p95_lateness_s").get<double>();
+  r.max_lateness_s = j.at("max_lateness_s").get<double>();
+  r.recoveries = j.at("recoveries").get<std::int64_t>();
+  r.recovery_time_sum_s = j.at("recovery_time_sum_s").get<double>();
+  r.unrecovered_episodes = j.at("unrecovered_episodes").get<std::int64_t>();
+  r.primary_delays = j.at("primary_delays").get<std::int64_t>();
+  r.tail_delays = j.at("tail_delays").get<std::int64_t>();
+  r.knock_on_delays = j.at("knock_on_delays").get<std::int64_t>();
+  r.takeovers = j.at("takeovers").get<std::int64_t>();
+  r.arrivals_taken_over = j.at("arrivals_taken_over").get<std::int64_t>();
+  r.traction_kJ = j.at("traction_kJ").get<double>();
+  r.regen_kJ = j.at("regen_kJ").get<double>();
+  r.used_regen_kJ = j.at("used_regen_kJ").get<double>();
+  r.substation_kJ = j.at("substation_kJ").get<double>();
+  return r;
+}
+
+constexpr const char* kFormat = "ecorail-montecarlo-1";
+
+}  // namespace
+
+nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard) {
+  const MonteCarloStatistics s = summarise(run.days, run.histogram);
+  nlohmann::json per_station = nlohmann::json::array();
+  for (std::size_t i = 1; i < s.station_arrivals.size() && i < run.stations.size(); ++i)
+    per_station.push_back(
+        {{"station", run.stations[i]},
+         {"arrivals", s.station_arrivals[i]},
+         {"punctual", s.station_punctual[i]},
+         {"punctuality", s.station_arrivals[i] > 0 ? static_cast<double>(s.station_punctual[i]) /
+                                                         static_cast<double>(s.station_arrivals[i])
+                                                   : 1.0}});
+  nlohmann::json days = nlohmann::json::array();
+  for (const DayRecord& r : run.days) days.push_back(day_json(r));
+  nlohmann::json stats = {{"days", s.days},
+                          {"punctuality", estimate_json(s.punctuality)},
+                          {"pooled_punctuality", s.pooled_punctuality},
+                          {"arrivals", s.arrivals},
+                          {"punctual_arrivals", s.punctual},
+                          {"mean_lateness_s", estimate_json(s.mean_lateness_s)},
+                          {"p95_lateness_s", estimate_json(s.p95_lateness_s)},
+                          {"pooled_p95_lateness_s", s.pooled_p95_lateness_s},
+                          {"max_lateness_s", estimate_json(s.max_lateness_s)},
+                          {"recovery_time_s", estimate_json(s.recovery_time_s)},
+                          {"recoveries", s.recoveries},
+                          {"traction_kJ", estimate_json(s.traction_kJ)},
+                          {"substation_kJ", estimate_json(s.substation_kJ)},
+                          {"used_regen_kJ", estimate_json(s.used_regen_kJ)},
+                          {"primary_delays", estimate_json(s.primary_delays)},
+                          {"tail_delays", estimate_json(s.tail_delays)},
+                          {"knock_on_delays", estimate_json(s.knock_on_delays)},
+                          {"takeovers", estimate_json(s.takeovers)},
+                          {"arrivals_taken_over", estimate_json(s.arrivals_taken_over)},
+                          {"unrecovered_episodes", estimate_json(s.unrecovered_episodes)}};
+  nlohmann::json j = {{"format", kFormat},
+                      {"config", run.config},
+                      {"stations", run.stations},
+                      {"plan_energy", run.plan_energy},
+                      {"statistics", stats},
+                      {"per_station", per_station},
+                      {"lateness_histogram", {{"bin_s", 1}, {"counts", run.histogram}}},
+                      {"days", days}};
+  if (!shard.empty()) j["shard"] = shard;
+  return j;
+}
+
+MonteCarloRun run_from_json(const nlohmann::json& j) {
+  try {
+    if (j.at("format").get<std::string>() != kFormat)
+      throw std::invalid_argument(std::string("format '") + kFormat + "'");
+    MonteCarloRun r;
+    r.config = j.at("config");
+    r.stations = j.at("stations").get<std::vector<std::string>>();
+    r.plan_energy = j.at("plan_energy");
+    r.histogram = j.at("lateness_histogram").at("counts").get<std::vector<std::int64_t>>();
+    if (r.histogram.size() != static_cast<std::size_t>(kLatenessHistogramBins))
+      throw std::invalid_argument("a lateness histogram of " +
+                                  std::to_string(kLatenessHistogramBins) + " bins");
+    for (const nlohmann::json& d : j.at("days")) r.days.push_back(day_from_json(d));
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("a Monte Carlo JSON (") + e.what() + ")");
+  }
+}
+
+MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards) {
+  if (shards.empty()) throw std::invalid_argument("at least one shard to merge");
+  MonteCarloRun out;
+  out.config = shards.front().config;
+  out.stations = shards.front().stations;
+  out.plan_energy = shards.front().plan_energy;
+  out.histogram.assign(kLatenessHistogramBins, 0);
+  for (const MonteCarloRun& s : shards) {
+    if (s.config != out.config || s.stations != out.stations || s.plan_energy != out.plan_energy)
+      throw std::invalid_argument(
+          "shards of one run (the same plan, seed, days and options); these differ in their "
+          "config");
+    for (std::size_t i = 0; i < out.histogram.size(); ++i) out.histogram[i] += s.histogram[i];
+    out.days.insert(out.days.end(), s.days.begin(), s.days.end());
+  }
+  std::sort(out.days.begin(), out.days.end(),
+            [](const DayRecord& a, const DayRecord& b) { return a.day < b.day; });
+  const std::uint64_t total = out.config.at("days").get<std::uint64_t>();
+  if (out.days.size() != total)
+    throw std::invalid_argument("every day of the run exactly once: the shards hold " +
+                                std::to_string(out.days.size()) + " days of " +
+                                std::to_string(total));
+  for (std::uint64_t i = 0; i < total; ++i)
+    if (out.days[i].day != i)
+      throw std::invalid_argument("every day of the run exactly once: day " + std::to_string(i) +
+                                  " is missing or repeated");
+  return out;
+}
+
+std::pair<std::uint64_t, std::uint64_t> shard_days(std::uint64_t total, int index, int count) {
+  const auto i = static_cast<std::uint64_t>(index - 1), n = static_cast<std::uint64_t>(count);
+  return {total * i / n, total * (i + 1) / n};
+}
+
+}  // namespace ecorail::recovery
