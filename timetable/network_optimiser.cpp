@@ -19,6 +19,10 @@ namespace {
 
 using Clock = SearchClock;
 
+// The annealing stops at this share of --time-limit, leaving the rest to the polish (a sweep of
+// a long day on the model's grid costs minutes).
+constexpr double kAnnealShareOfTimeLimit = 0.6;
+
 // The network search's draws (search_support.hpp), salted apart from the power-flow search's.
 std::uint64_t draw(std::uint64_t seed, std::uint64_t run, std::uint64_t move, std::uint64_t k) {
   return counter_draw(seed, run, move, k, 0x6e6574776f726bULL);
@@ -99,14 +103,19 @@ RunResult anneal(NetworkBalance& balance, const FleetProblem& p, std::vector<int
 }
 
 // Every train tried at every departure within +-window, the best kept, until a sweep changes
-// nothing (at most `sweeps`).
+// nothing (at most `sweeps`). A sweep of a long day costs minutes on the model's grid, so the
+// time limit stops it between trains (*stopped set; the timetable so far is kept).
 long polish(NetworkBalance& balance, const FleetProblem& p, std::vector<int>& t, int window,
-            int sweeps) {
+            int sweeps, Clock::time_point t0, double limit_s, bool* stopped) {
   long moves = 0;
   balance.place_all(t);
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
+  for (int sweep = 0; sweep < sweeps && !*stopped; ++sweep) {
     bool improved = false;
     for (int k = 1; k + 1 < p.trains; ++k) {
+      if (limit_s > 0.0 && seconds_since(t0) > limit_s) {
+        *stopped = true;
+        break;
+      }
       auto [lo, hi] = feasible_range(p, t, k);
       lo = std::max(lo, t[k] - window), hi = std::min(hi, t[k] + window);
       const int start = t[k];
@@ -181,7 +190,7 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   for (int r = 0; r < runs; ++r) {
     NetworkBalance balance(coarse, supply, eo.traction_efficiency, p.trains, horizon, 1);
     results[r] = anneal(balance, p, starts[r % starts.size()], options.seed, r, moves, t0,
-                        options.time_limit_s);
+                        kAnnealShareOfTimeLimit * options.time_limit_s);
   }
   std::size_t best = 0;
   for (std::size_t r = 0; r < results.size(); ++r) {
@@ -191,17 +200,22 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   }
   s.start_used_J = 0.0;
   report("annealing done", 0.0);
-  // Polish the best annealed timetable: on the coarse grid, then on the model's own.
+  // Polish the best annealed timetable: on the coarse grid, then on the model's own, until the
+  // time limit.
   std::vector<int> t = results[best].departures;
+  bool polish_stopped = false;
   {
     NetworkBalance balance(coarse, supply, eo.traction_efficiency, p.trains, horizon, threads);
-    s.moves += polish(balance, p, t, options.polish_window_s, 5);
+    s.moves += polish(balance, p, t, options.polish_window_s, 5, t0, options.time_limit_s,
+                      &polish_stopped);
   }
-  if (coarse.ticks_per_second() != eo.ticks_per_second()) {
+  if (coarse.ticks_per_second() != eo.ticks_per_second() && !polish_stopped) {
     NetworkBalance balance(models.network_profile(), supply, eo.traction_efficiency, p.trains,
                            horizon, threads);
-    s.moves += polish(balance, p, t, std::min(2, options.polish_window_s), 3);
+    s.moves += polish(balance, p, t, std::min(2, options.polish_window_s), 3, t0,
+                      options.time_limit_s, &polish_stopped);
   }
+  s.time_limit_reached |= polish_stopped;
   out.headways_s = headways_from_departures(t);
   out.evaluation = models.evaluate(t);
   s.method = "annealing (" + std::to_string(runs) +
@@ -228,7 +242,7 @@ HeadwayOptimiserResult optimise_network_headways(const FleetModels& models,
   if (unsolved)
     s.message = "the load flow found no solution at some instants";
   else if (s.time_limit_reached)
-    s.message = "the time limit stopped the annealing early";
+    s.message = "the time limit stopped the annealing or the polish early";
   s.wall_s = seconds_since(t0);
   report("done", s.used_regen_J);
   return out;

@@ -162,6 +162,12 @@ std::string PatternSearchResult::BriefReport() const {
       a.substation_J() / 1e3, b.substation_J() / 1e3, (b.substation_J() - a.substation_J()) / 1e3,
       a.traction_J / 1e3, b.traction_J / 1e3, (b.traction_J - a.traction_J) / 1e3,
       used_regen_of(headways_only) / 1e3, used_regen_of(common_pattern) / 1e3);
+  if (per_train.empty() && n > 0 && n < static_cast<int>(sizeof buf)) {
+    std::snprintf(buf + n, sizeof buf - n, "; %s",
+                  time_limit_reached   ? "stopped at the time limit"
+                  : move_limit_reached ? "stopped at the move limit"
+                                       : "no move improves (a local optimum)");
+  }
   if (!per_train.empty() && n > 0 && n < static_cast<int>(sizeof buf)) {
     const FleetEnergy& c = timetable.evaluation.total;
     std::snprintf(buf + n, sizeof buf - n,
@@ -236,8 +242,10 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   std::vector<double> min_time(n);
   for (std::size_t i = 0; i < n; ++i) min_time[i] = library.min_time_s(i) + 0.5;
   const std::vector<PatternMove> moves = pattern_moves(static_cast<int>(n));
+  // The limit is of each stage (PatternSearchOptions): the headways before took their own.
+  const SearchClock::time_point pattern_start = SearchClock::now();
   const auto out_of_time = [&] {
-    return options.time_limit_s > 0.0 && seconds_since(start_time) > options.time_limit_s;
+    return options.time_limit_s > 0.0 && seconds_since(pattern_start) > options.time_limit_s;
   };
   for (double delta : options.deltas_s) {
     bool improved = true;
@@ -283,6 +291,8 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
     }
   }
 
+  out.move_limit_reached = !out.time_limit_reached && out.moves_accepted >= options.max_moves;
+
   // 3. Headways for the pattern found (a trip copies its runs, so it outlives the cache); the
   // better of the re-optimised and the kept departures is the result.
   if (out.moves_accepted == 0) {
@@ -325,6 +335,7 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
     return options.time_limit_s > 0.0 && seconds_since(per_train_start) > options.time_limit_s;
   };
   out.time_limit_reached = false;
+  out.move_limit_reached = false;
   const FleetModels final_models(out.pattern.trip, problem, model);
   // Trains start on the common pattern (final_models' profile); own[k] holds train k's profile
   // once it has one of its own.
