@@ -19,6 +19,7 @@
 #include "timetable/fleet_pattern.hpp"
 #include "timetable/headway_optimiser.hpp"
 #include "timetable/network_balance.hpp"
+#include "timetable/network_bound.hpp"
 #include "timetable/network_evaluation.hpp"
 #include "timetable/pair_bound.hpp"
 
@@ -154,5 +155,29 @@ void BM_NetworkMove(benchmark::State& state) {
   state.SetItemsProcessed(2 * state.iterations());  // moves
 }
 BENCHMARK(BM_NetworkMove)->Unit(benchmark::kMillisecond);
+
+// What the pattern search pays to screen one candidate pattern under the network model: the
+// trip's profile on the 1 s grid and the whole day laid out on it (2 threads).
+void BM_NetworkPatternScreen(benchmark::State& state) {
+  const auto setup = network_models().network_setup(2);
+  const auto t = uniform();
+  for (auto _ : state) {
+    const timetable::NetworkProfile coarse(pattern().trip, 1);
+    timetable::NetworkBalance balance(coarse, *setup.supply, 1.0, 100, setup.horizon_s, 2);
+    balance.place_all(t);
+    benchmark::DoNotOptimize(balance.substation());
+  }
+}
+BENCHMARK(BM_NetworkPatternScreen)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The network optimiser's lower bound for the reference day (network_bound.hpp).
+void BM_NetworkBound(benchmark::State& state) {
+  const auto& m = network_models();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(timetable::network_substation_bound(
+        m.network_profile(), *m.options().power_supply, 1.0, m.problem()));
+  }
+}
+BENCHMARK(BM_NetworkBound)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
