@@ -4,7 +4,7 @@
 # dwell range; --per-train-patterns is one clear error naming why; a day with peak windows is
 # evaluated and optimised with every headway in its class (checked on the outputs), and
 # `evaluate --headways` of the optimum's headways gives its energy; the summary's bound is never
-# above the energy found; every run writes the network's JSON keys.
+# above the energy found (also on the reference day); every run writes the network's JSON keys.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 
@@ -32,6 +32,11 @@ print('\n'.join(str(h) for h in json.load(open('wopt.json'))['headways_s']))" > 
 "$ecorail" timetable evaluate "${day[@]}" "${net[@]}" --headways wopt_headways.csv --json wre.json \
   > wre.txt || { echo "FAIL: windowed re-evaluate"; cat wre.txt; fail=1; }
 
+# The reference day (100 trains, 0.1 s): the bound is below what the optimiser finds (a short
+# run: no annealing, the polish stopped after 3 s).
+"$ecorail" timetable optimise --model network --power-supply "$supply" --restarts 0 --time-limit 3 \
+  --quiet --json ref.json > ref.txt || { echo "FAIL: reference optimise"; cat ref.txt; fail=1; }
+
 python3 - <<'PY' || fail=1
 import csv, json
 def network_keys(j, what):
@@ -48,6 +53,12 @@ def bounded(j, what):
     assert 0 < b <= j["substation_energy_kJ"] + j["curtailed_traction_kJ"] + 1e-6, (what, b)
     gap = (j["substation_energy_kJ"] + j["curtailed_traction_kJ"] - b) / j["substation_energy_kJ"]
     assert abs(gap - j["gap_fraction_of_substation"]) < 1e-9, what
+
+ref = json.load(open("ref.json"))
+network_keys(ref, "reference")
+bounded(ref, "reference")
+assert ref["trains"] == 100 and ref["time_step_s"] == 0.1
+assert ref["bound_substation_kJ"] > 0.8 * ref["substation_energy_kJ"], ref["bound_substation_kJ"]
 
 p = json.load(open("pat.json"))
 network_keys(p, "pattern")
