@@ -111,6 +111,13 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   std::fputs(sol.summary.BriefReport().c_str(), out);
   const std::string cap_note = speed_cap_note(p.line, stops, p.train);
   if (!cap_note.empty()) std::fprintf(out, "  note: %s\n", cap_note.c_str());
+  if (sol.summary.streamed_tables) {
+    std::fprintf(out,
+                 "  note: the sections' transition tables (%.2f GiB together) exceed half of the "
+                 "memory this process can have, so each is built per sweep and freed (same "
+                 "result, slower)\n",
+                 sol.summary.tables_estimate_bytes / 1073741824.0);
+  }
   if (options.min_regime.active()) {
     const double cost_kJ = units::J_to_kJ(sol.merged_cost_J - sol.unmerged_cost_J);
     std::fprintf(

@@ -219,6 +219,10 @@ std::string JourneySummary::FullReport() const {
   r += format_text("  %-28s ds %.3g m, dv %.3g km/h, substep %.3g m\n", "Grid", grid.ds_m,
                    grid.dv_kmh, grid.substep_m);
   r += format_text("  %-28s %d\n", "Threads", threads);
+  if (streamed_tables) {
+    r += format_text("  %-28s built per sweep: all together %.2f GiB would exceed the budget\n",
+                     "Transition tables", tables_estimate_bytes / 1073741824.0);
+  }
   if (std::isfinite(lambda_J_per_s)) {
     r += format_text("  %-28s %s\n", "Lambda (time price)", lambda_text(lambda_J_per_s).c_str());
   }
@@ -413,6 +417,8 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   }
   out.total_wall_s = seconds_since(t0);
   summarise_journey(routes, min_total, options, out);
+  out.summary.streamed_tables = library.streams_tables();
+  out.summary.tables_estimate_bytes = library.tables_estimate_bytes();
   return out;
 }
 

@@ -94,6 +94,10 @@ struct JourneySummary {
   double net_energy_kJ = 0.0;
   double stop_error_m = 0.0;  // the largest of the sections', by size
   double max_overspeed_kmh = 0.0;
+  // The library built each section's table per sweep (SectionLibraryOptions::memory_budget_bytes)
+  // because all of them together (tables_estimate_bytes) would not fit.
+  bool streamed_tables = false;
+  double tables_estimate_bytes = 0.0;
   std::vector<std::string> warnings;
 
   std::string BriefReport() const;

@@ -56,8 +56,31 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
       envelope_(train_, route_, options.envelope_resolution_m),
       motion_(train_, route_, envelope_),
       grid_(envelope_, route_.length_m(), options.grid) {
-  const ThreadScope threads(options_.threads);
-  table_ = std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
+  if (options_.keep_transitions) {
+    const ThreadScope threads(options_.threads);
+    table_ = build_table();
+  }
+}
+
+std::unique_ptr<TransitionTable> SectionEngine::build_table() const {
+  return std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
+}
+
+const TransitionTable& SectionEngine::transitions() const {
+  std::call_once(table_once_, [&] {
+    if (table_ == nullptr) {
+      const ThreadScope threads(options_.threads);
+      table_ = build_table();
+    }
+  });
+  return *table_;
+}
+
+const TransitionTable& SectionEngine::table_for_sweep(
+    std::unique_ptr<TransitionTable>& local) const {
+  if (options_.keep_transitions) return *table_;
+  local = build_table();  // under the caller's ThreadScope
+  return *local;
 }
 
 physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram& program,
@@ -82,8 +105,9 @@ double SectionEngine::energy_cost_J(const physics::SimulationResult& sim) const 
 
 ValueFunction SectionEngine::sweep(double lambda) const {
   const ThreadScope threads(options_.threads);
+  std::unique_ptr<TransitionTable> local;
   ValueFunction value;
-  backward_sweep(grid_, *table_, lambda, value);
+  backward_sweep(grid_, table_for_sweep(local), lambda, value);
   return value;
 }
 

@@ -31,6 +31,11 @@ struct EngineOptions {
   // Cruising as a speed hold: a saw tooth of traction and coasting in the extracted program is
   // replaced by a hold at its mean speed (dp::hold_cruising) before the re-simulation.
   bool cruise_as_hold = true;
+  // Transition table kept for the engine's life (the default), or built for each sweep and
+  // freed after it: a line whose tables do not fit in memory together (dp::SectionLibrary
+  // decides) then holds at most one table per sweep running. Results are bit for bit the
+  // same; each sweep pays for its table.
+  bool keep_transitions = true;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -66,7 +71,10 @@ class SectionEngine {
   // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
   // policy tables.
   ValueFunction sweep(double lambda) const;
-  const TransitionTable& transitions() const { return *table_; }
+  // The table (built and kept on first use when the engine does not keep its tables).
+  const TransitionTable& transitions() const;
+  // Whether the engine holds a transition table now (not while it streams its tables).
+  bool holds_transitions() const { return table_ != nullptr; }
   const physics::SpeedEnvelope& envelope() const { return envelope_; }
   // The integration settings of the DP transitions (to score controls consistently).
   physics::StepSettings dp_step() const { return {options_.grid.substep_m, 2}; }
@@ -92,7 +100,12 @@ class SectionEngine {
   physics::SpeedEnvelope envelope_;
   physics::Motion motion_;
   StageGrid grid_;
-  std::unique_ptr<TransitionTable> table_;
+  // The table a sweep uses: the kept one, or one built into local for this sweep only.
+  const TransitionTable& table_for_sweep(std::unique_ptr<TransitionTable>& local) const;
+  std::unique_ptr<TransitionTable> build_table() const;
+
+  mutable std::unique_ptr<TransitionTable> table_;
+  mutable std::once_flag table_once_;
   mutable std::once_flag flat_out_once_;
   mutable physics::SimulationResult flat_out_;
 };

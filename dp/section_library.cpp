@@ -7,6 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "dp/resource_estimate.hpp"
 #include "dp/text_format.hpp"
 #include "dp/threads.hpp"
 
@@ -33,6 +34,9 @@ bool SectionLibraryOptions::IsValid(std::string* error) const {
   if (!(frontier_step_s > 0.0 && frontier_step_s <= frontier_span_s)) {
     return fail("frontier_step_s must be in (0, frontier_span_s]");
   }
+  if (!(memory_budget_bytes >= 0.0 && std::isfinite(memory_budget_bytes))) {
+    return fail("memory_budget_bytes must be 0 (automatic) or a finite number of bytes");
+  }
   return true;
 }
 
@@ -46,6 +50,15 @@ SectionLibrary::SectionLibrary(const physics::Train& train, std::vector<physics:
   if (!options_.IsValid(&why)) throw std::invalid_argument(why);
   if (routes_.empty()) throw std::invalid_argument("a section library needs at least one route");
   for (std::size_t i = 0; i < routes_.size(); ++i) slots_.push_back(std::make_unique<Slot>());
+  for (const physics::Route& route : routes_) {
+    tables_estimate_bytes_ +=
+        estimate_engine(train_, route, options_.engine.grid, options_.engine.envelope_resolution_m)
+            .bytes;
+  }
+  const double budget = options_.memory_budget_bytes > 0.0 ? options_.memory_budget_bytes
+                                                           : 0.5 * memory_limit_bytes();
+  streams_tables_ = routes_.size() > 1 && tables_estimate_bytes_ > budget;
+  if (streams_tables_) options_.engine.keep_transitions = false;
 }
 
 SectionLibrary::~SectionLibrary() = default;

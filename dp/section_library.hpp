@@ -32,6 +32,12 @@ struct SectionLibraryOptions {
   TimeSearchOptions search;
   double frontier_span_s = 60.0;  // a section's frontier covers [T_min, T_min + span]
   double frontier_step_s = 1.0;
+  // Memory the library's transition tables may take together (bytes; 0: half of what this
+  // process can have, dp::memory_limit_bytes). When the estimate of all its sections' tables
+  // exceeds it, the library streams: each engine builds its table for each sweep and frees it
+  // (EngineOptions::keep_transitions), so a long line needs the memory of the tables in use at
+  // once, not of all of them. Results are bit for bit the same; sweeps cost more.
+  double memory_budget_bytes = 0.0;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -88,6 +94,10 @@ class SectionLibrary {
   int engine_builds() const { return engine_builds_; }
   int frontier_computations() const { return frontier_computations_; }
   int frontier_loads() const { return frontier_loads_; }
+  // Whether the tables are built per sweep (see SectionLibraryOptions::memory_budget_bytes),
+  // and the estimate of all the sections' tables held together that decided it.
+  bool streams_tables() const { return streams_tables_; }
+  double tables_estimate_bytes() const { return tables_estimate_bytes_; }
 
  private:
   struct Slot;
@@ -98,6 +108,8 @@ class SectionLibrary {
   SectionLibraryOptions options_;
   std::string problem_key_;
   std::vector<std::unique_ptr<Slot>> slots_;
+  double tables_estimate_bytes_ = 0.0;
+  bool streams_tables_ = false;
   mutable std::atomic<int> engine_builds_{0};
   mutable std::atomic<int> frontier_computations_{0};
   mutable std::atomic<int> frontier_loads_{0};
