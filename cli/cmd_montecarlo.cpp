@@ -45,6 +45,8 @@ struct MonteCarloArgs {
   long long seed = 1;
   std::string recovery = "exact";
   std::string tail = "exponential:30";
+  double run_early_s = 0.0;
+  std::string run_early_values = "0";
   double early_s = 10.0, min_dwell_s = 30.0, takeover_s = 120.0, punctual_s = 10.0;
   double separation_s = -1.0;
   double knot_step_s = 1.0, step_s = 0.1;
@@ -229,12 +231,15 @@ void run_montecarlo(const MonteCarloArgs& a) {
     o.recovery = recovery::RecoveryPolicy::Exact;
   else if (a.recovery == "rule")
     o.recovery = recovery::RecoveryPolicy::Rule;
+  else if (a.recovery == "exact-punctual")
+    o.recovery = recovery::RecoveryPolicy::ExactPunctual;
   else
-    bad("--recovery", "exact or rule; got '" + a.recovery + "'");
+    bad("--recovery", "exact, exact-punctual or rule; got '" + a.recovery + "'");
   std::string why;
   if (!recovery::parse_delay_tail(a.tail, o.delays, &why)) bad("--tail", why);
   o.seed = static_cast<std::uint64_t>(a.seed);
   o.early_s = a.early_s;
+  o.run_early_s = a.run_early_s;
   o.min_dwell_s = a.min_dwell_s;
   o.takeover_s = a.takeover_s;
   o.punctual_s = a.punctual_s;
@@ -252,6 +257,11 @@ void run_montecarlo(const MonteCarloArgs& a) {
     if (a.adjusted_csv.empty()) bad("--adjusted-csv", "the file the adjusted plan goes to");
     adj.thetas = parse_list(a.thetas, "--thetas");
     adj.extra_dwells_s = parse_list(a.extra_dwells, "--extra-dwells");
+    adj.run_early_s = parse_list(a.run_early_values, "--run-early-values");
+    for (double b : adj.run_early_s)
+      if (!(b >= 0.0 && b <= a.early_s))
+        bad("--run-early-values", "offsets within [0, --early]; got '" + a.run_early_values + "'");
+    if (a.run_early_s != 0.0) bad("--run-early", "--run-early-values with --adjust");
     adj.target_punctuality = a.target;
     adj.search_days = static_cast<std::uint64_t>(std::max(0LL, a.search_days));
     adj.threads = a.problem.threads;
@@ -321,18 +331,20 @@ void run_montecarlo(const MonteCarloArgs& a) {
                                                  : std::function<void(int, int)>());
     std::FILE* out = a.json == "-" ? stderr : stdout;
     std::fputs(r.summary.FullReport().c_str(), out);
-    std::fprintf(out, "  %5s %6s %10s %10s %10s %8s %16s %16s %16s\n", "theta", "dwell+",
-                 "punctual", "+-", "mean_late", "p95", "substation_kJ", "+-", "plan_kJ");
+    std::fprintf(out, "  %5s %6s %6s %10s %10s %10s %8s %16s %16s %16s\n", "theta", "dwell+",
+                 "early", "punctual", "+-", "mean_late", "p95", "substation_kJ", "+-", "plan_kJ");
     nlohmann::json cands = nlohmann::json::array();
     for (std::size_t i = 0; i < r.candidates.size(); ++i) {
       const auto& c = r.candidates[i];
       const auto& s = c.statistics;
-      std::fprintf(out, "%s %5.2f %6.1f %10.5f %10.5f %10.3f %8.2f %16.1f %16.1f %16.1f\n",
-                   i == r.summary.chosen ? "*" : " ", c.theta, c.extra_dwell_s, s.punctuality.mean,
-                   s.punctuality.ci95, s.mean_lateness_s.mean, s.p95_lateness_s.mean,
-                   s.substation_kJ.mean, s.substation_kJ.ci95, c.plan_substation_kJ);
+      std::fprintf(out, "%s %5.2f %6.1f %6.1f %10.5f %10.5f %10.3f %8.2f %16.1f %16.1f %16.1f\n",
+                   i == r.summary.chosen ? "*" : " ", c.theta, c.extra_dwell_s, c.run_early_s,
+                   s.punctuality.mean, s.punctuality.ci95, s.mean_lateness_s.mean,
+                   s.p95_lateness_s.mean, s.substation_kJ.mean, s.substation_kJ.ci95,
+                   c.plan_substation_kJ);
       cands.push_back({{"theta", c.theta},
                        {"extra_dwell_s", c.extra_dwell_s},
+                       {"run_early_s", c.run_early_s},
                        {"running_times_s", c.running_times_s},
                        {"dwells_s", c.dwells_s},
                        {"meets_target", c.meets_target},
@@ -351,6 +363,7 @@ void run_montecarlo(const MonteCarloArgs& a) {
                               {"target_punctuality", a.target},
                               {"target_met", r.summary.target_met},
                               {"chosen", r.summary.chosen},
+                              {"chosen_run_early_s", r.chosen().run_early_s},
                               {"candidates", cands},
                               {"warnings", r.summary.warnings},
                               {"brief_report", r.summary.BriefReport()}};
@@ -387,6 +400,7 @@ void run_montecarlo(const MonteCarloArgs& a) {
                 {"small_max_s", o.delays.small_max_s},
                 {"tail", o.delays.tail_text()},
                 {"early_s", o.early_s},
+                {"run_early_s", o.run_early_s},
                 {"min_dwell_s", o.min_dwell_s},
                 {"takeover_s", o.takeover_s},
                 {"punctual_s", o.punctual_s},
@@ -432,13 +446,20 @@ void add_montecarlo_command(CLI::App& app) {
   cmd->add_option("--days", args->days, "simulated days")->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the delay draws")->capture_default_str();
   cmd->add_option("--recovery", args->recovery,
-                  "exact (question 3.1's policy, early running allowed) or rule (flat out until "
-                  "on time)")
+                  "exact (question 3.1's policy, early running allowed), exact-punctual (the same, "
+                  "every arrival on the way punctual where flat out can make it) or rule (flat "
+                  "out until on time)")
       ->capture_default_str();
   cmd->add_option("--tail", args->tail,
                   "delays over 10 s: exponential:MEAN (10 s + exponential) or uniform:LOW:HIGH")
       ->capture_default_str();
   cmd->add_option("--early", args->early_s, "trains may arrive and depart this early (s)")
+      ->capture_default_str();
+  cmd->add_option("--run-early", args->run_early_s,
+                  "run the plan this much ahead of the timetable, within --early (s)")
+      ->capture_default_str();
+  cmd->add_option("--run-early-values", args->run_early_values,
+                  "operating offsets searched by --adjust (s)")
       ->capture_default_str();
   cmd->add_option("--min-dwell", args->min_dwell_s, "shortest dwell at a stop (s)")
       ->capture_default_str();

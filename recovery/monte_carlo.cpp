@@ -17,8 +17,22 @@
 
 namespace ecorail::recovery {
 
+namespace {
+// The day's power grid starts this much before the timetable's 0: a plan run early (or a
+// train leaving early) departs before 0, and no bin may fall off the grid.
+constexpr double kClockOffset_s = 600.0;
+}  // namespace
+
 const char* recovery_policy_name(RecoveryPolicy p) {
-  return p == RecoveryPolicy::Exact ? "exact" : "rule";
+  switch (p) {
+    case RecoveryPolicy::Exact:
+      return "exact";
+    case RecoveryPolicy::ExactPunctual:
+      return "exact-punctual";
+    case RecoveryPolicy::Rule:
+      return "rule";
+  }
+  return "exact";
 }
 
 bool MonteCarloOptions::IsValid(std::string* error) const {
@@ -29,6 +43,8 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
   if (!delays.IsValid(error)) return false;
   if (!(early_s >= 0.0 && early_s <= 600.0))
     return fail("MonteCarloOptions::early_s must lie in [0, 600] s");
+  if (!(run_early_s >= 0.0 && run_early_s <= early_s))
+    return fail("MonteCarloOptions::run_early_s must lie in [0, early_s]");
   if (!(min_dwell_s >= 0.0 && min_dwell_s < 1e5))
     return fail("MonteCarloOptions::min_dwell_s must lie in [0, 1e5) s");
   if (!(takeover_s > 0.0 && takeover_s <= 86400.0))
@@ -118,6 +134,12 @@ double separation_time_s(const dp::SectionLibrary& library, const Plan& plan, Se
 MonteCarlo::MonteCarlo(const dp::SectionLibrary& library, const Plan& plan,
                        const MonteCarloOptions& options, SectionRuns& runs)
     : library_(library), plan_(plan), options_(options), runs_(runs) {
+  for (TrainStops& t : plan_.trains)
+    for (std::size_t j = 0; j < t.arrival_s.size(); ++j) {
+      t.arrival_s[j] -= options.run_early_s;
+      t.departure_s[j] -= options.run_early_s;
+    }
+  slack_s_ = options.early_s - options.run_early_s;
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   if (const std::string p = plan.problem(); !p.empty()) throw std::invalid_argument(p);
@@ -136,7 +158,7 @@ MonteCarlo::MonteCarlo(const dp::SectionLibrary& library, const Plan& plan,
     for (std::size_t k = 0; k < plan.trains.size(); ++k) {
       const double r = plan.running_time_s(k, j);
       if (exact[j].empty() || std::fabs(exact[j].back() - r) > 5e-4) exact[j].push_back(r);
-      upper[j] = std::max(upper[j], r + options.early_s);
+      upper[j] = std::max(upper[j], r + options.early_s);  // at most slack_s_ is needed
     }
     std::sort(exact[j].begin(), exact[j].end());
     exact[j].erase(std::unique(exact[j].begin(), exact[j].end(),
@@ -148,7 +170,7 @@ MonteCarlo::MonteCarlo(const dp::SectionLibrary& library, const Plan& plan,
       options.separation_s >= 0.0 ? options.separation_s : separation_time_s(library, plan, runs);
   horizon_s_ = 0.0;
   for (const TrainStops& t : plan.trains) horizon_s_ = std::max(horizon_s_, t.arrival_s.back());
-  horizon_s_ += 3600.0;
+  horizon_s_ += 3600.0 + kClockOffset_s;
 }
 
 void MonteCarlo::allocate(std::size_t k, std::size_t a, std::size_t b, double start_s, double end_s,
@@ -167,22 +189,34 @@ void MonteCarlo::allocate(std::size_t k, std::size_t a, std::size_t b, double st
   for (std::size_t j = a; j < b; ++j) t[j] = part[j - a];
   if (b - a < 2) return;
   // No arrival so early that the train would leave before its timetabled departure less the
-  // early allowance: where the split breaks that, the most broken stop binds; split there.
-  double arrival = start_s, worst = 1e-9, bound = 0.0;
+  // early allowance; with punctual caps, no arrival later than the punctuality threshold where a
+  // flat-out run from here would be punctual there. Where the split breaks a bound, the most
+  // broken stop binds: the train arrives there exactly at the bound, and both sides are split
+  // again.
+  const bool caps = options_.recovery == RecoveryPolicy::ExactPunctual;
+  double arrival = start_s, flat = start_s, worst = 1e-9, bound = 0.0;
   std::size_t at = 0;
   for (std::size_t m = a + 1; m < b; ++m) {
     arrival += t[m - 1];
-    const double least = st.departure_s[m] - options_.early_s - dmin_[k][m];
+    flat += runs_.min_time_s(m - 1);
+    const double least = st.departure_s[m] - slack_s_ - dmin_[k][m];
     if (least - arrival > worst) {
       worst = least - arrival;
       at = m;
       bound = least;
     }
+    const double latest = st.arrival_s[m] + options_.run_early_s + options_.punctual_s;
+    if (caps && flat <= latest && arrival - latest > worst) {
+      worst = arrival - latest;
+      at = m;
+      bound = latest;
+    }
     arrival += dmin_[k][m];
+    flat = std::max(st.departure_s[m] - slack_s_, flat + dmin_[k][m]);
   }
   if (at == 0) return;
   allocate(k, a, at, start_s, bound, t);
-  allocate(k, at, b, bound + dmin_[k][at], end_s, t);
+  allocate(k, at, b, std::max(bound + dmin_[k][at], st.departure_s[at] - slack_s_), end_s, t);
 }
 
 double MonteCarlo::exact_time(std::size_t k, std::size_t j, double departure_s,
@@ -202,7 +236,7 @@ double MonteCarlo::exact_target(std::size_t k, std::size_t j, double departure_s
       e = m + 1;
       break;
     }
-    if (m + 1 < n) dep = std::max(st.departure_s[m + 1] - options_.early_s, arr + dmin_[k][m + 1]);
+    if (m + 1 < n) dep = std::max(st.departure_s[m + 1] - slack_s_, arr + dmin_[k][m + 1]);
   }
   if (recoverable != nullptr) *recoverable = e <= n;
   if (target != nullptr) *target = e;
@@ -218,7 +252,7 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
   bins.step_s = runs_.bin_step_s();
   bins.reset(static_cast<std::size_t>(std::ceil(horizon_s_ / bins.step_s)));
   const std::size_t n = plan_.sections(), trains = plan_.trains.size();
-  const bool exact = options_.recovery == RecoveryPolicy::Exact;
+  const bool exact = options_.recovery != RecoveryPolicy::Rule;
   const double tol = options_.on_time_tolerance_s;
   DayRecord r;
   r.day = day;
@@ -238,7 +272,7 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
     for (std::size_t j = 0; j < n; ++j) {
       const double d = st.departure_s[j];
       const double ready = j == 0 ? d : arrival + dmin_[k][j];
-      double dep = std::max(ready, exact && in_recovery ? d - options_.early_s : d);
+      double dep = std::max(ready, exact && in_recovery ? d - slack_s_ : d);
       // Knock-on: no sooner than the separation after the train ahead (or the plan's own
       // headway where that is shorter: the plan was made under the cap).
       if (last_dep[j] > -1e299) {
@@ -291,13 +325,14 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
         }
       }
       t = std::clamp(t, runs_.min_time_s(j), std::max(runs_.min_time_s(j), runs_.last_knot_s(j)));
-      runs_.lay(j, t, dep, bins);
+      runs_.lay(j, t, dep + kClockOffset_s, bins);
       arrival = dep + t;
-      const double arr_late = arrival - st.arrival_s[j + 1];
-      const double lat = std::max(0.0, arr_late);
+      const double arr_late = arrival - st.arrival_s[j + 1];  // against the operating plan
+      const double late_published = arr_late - options_.run_early_s;
+      const double lat = std::max(0.0, late_published);
       ++r.arrivals;
       ++r.station_arrivals[j + 1];
-      if (arr_late <= options_.punctual_s + 1e-9) {
+      if (late_published <= options_.punctual_s + 1e-9) {
         ++r.punctual;
         ++r.station_punctual[j + 1];
       }

@@ -31,17 +31,24 @@
 
 namespace ecorail::recovery {
 
-enum class RecoveryPolicy { Exact, Rule };
+// Exact: question 3.1's policy (earliest station back on time, then least energy). Rule: the
+// seed paper's. ExactPunctual: Exact with one more constraint before the energy: every arrival
+// on the way that a flat-out run could make punctual is punctual.
+enum class RecoveryPolicy { Exact, Rule, ExactPunctual };
 const char* recovery_policy_name(RecoveryPolicy p);
 
 struct MonteCarloOptions {
   DelayDistribution delays;
   std::uint64_t seed = 1;
   RecoveryPolicy recovery = RecoveryPolicy::Exact;
-  double early_s = 10.0;      // a train may arrive and depart this much before the timetable
-  double min_dwell_s = 30.0;  // a stop's dwell never goes below min(this, planned)
-  double takeover_s = 120.0;  // a drawn delay above this is not recovered: taken over
-  double punctual_s = 10.0;   // an arrival at most this late is punctual
+  double early_s = 10.0;  // a train may arrive and depart this much before the timetable
+  // The operating plan runs this much ahead of the published timetable (0 <= it <= early_s):
+  // every departure and arrival that much early, a buffer a delay uses up before it makes the
+  // train late. Recovery aims at the operating plan; lateness is counted against the timetable.
+  double run_early_s = 0.0;
+  double min_dwell_s = 30.0;          // a stop's dwell never goes below min(this, planned)
+  double takeover_s = 120.0;          // a drawn delay above this is not recovered: taken over
+  double punctual_s = 10.0;           // an arrival at most this late is punctual
   double on_time_tolerance_s = 0.05;  // a late episode ends at an arrival this close to the plan
   double separation_s = -1.0;  // least time between departures from a station (< 0: from the plan)
   double knot_step_s = 1.0;    // section runs every this many seconds of running time
@@ -78,6 +85,7 @@ class MonteCarlo {
   MonteCarlo(const dp::SectionLibrary& library, const Plan& plan, const MonteCarloOptions& options,
              SectionRuns& runs);
 
+  // The operating plan (the timetable shifted by run_early_s).
   const Plan& plan() const { return plan_; }
   const MonteCarloOptions& options() const { return options_; }
   double separation_s() const { return separation_s_; }
@@ -109,6 +117,7 @@ class MonteCarlo {
   std::vector<std::vector<double>> dmin_;  // per train, per station
   double separation_s_ = 0.0;
   double horizon_s_ = 0.0;
+  double slack_s_ = 0.0;  // how much earlier than the operating plan a train may leave
 };
 
 // The least time between two departures from a station for which a train running the plan's

@@ -19,6 +19,10 @@ bool PlanAdjustmentOptions::IsValid(std::string* error) const {
   for (double x : extra_dwells_s)
     if (!(x >= 0.0 && x <= 60.0))
       return fail("PlanAdjustmentOptions::extra_dwells_s must lie in [0, 60] s");
+  if (run_early_s.empty()) return fail("PlanAdjustmentOptions: at least one run_early_s");
+  for (double b : run_early_s)
+    if (!(b >= 0.0 && b <= 600.0))
+      return fail("PlanAdjustmentOptions::run_early_s must lie in [0, 600] s");
   if (!(max_dwell_s > 0.0 && max_dwell_s <= 600.0))
     return fail("PlanAdjustmentOptions::max_dwell_s must lie in (0, 600] s");
   if (search_days < 2 || search_days > 1000000)
@@ -72,7 +76,8 @@ PlanAdjustmentResult adjust_plan(const dp::SectionLibrary& library, const Plan& 
   std::vector<double> departures;
   for (const TrainStops& t : base.trains) departures.push_back(t.departure_s[0]);
   PlanAdjustmentResult out;
-  const int total = static_cast<int>(options.thetas.size() * options.extra_dwells_s.size());
+  const int total = static_cast<int>(options.thetas.size() * options.extra_dwells_s.size() *
+                                     options.run_early_s.size());
   for (double extra : options.extra_dwells_s) {
     std::vector<double> w = w0;
     double dwell_change = 0.0;
@@ -100,33 +105,39 @@ PlanAdjustmentResult adjust_plan(const dp::SectionLibrary& library, const Plan& 
     split_by_price(runs, all, lo, hi, running, opt);
     const double margin = (running - min_sum) / static_cast<double>(n);
     for (double theta : options.thetas) {
-      PlanCandidate c;
-      c.theta = theta;
-      c.extra_dwell_s = extra;
-      c.dwells_s = w;
+      std::vector<double> times;
       double sum_ms = 0.0;
       for (std::size_t j = 0; j < n; ++j) {
         const double even = std::min(hi[j], lo[j] + margin);
         const double t = std::round(((1.0 - theta) * opt[j] + theta * even) * 1000.0) / 1000.0;
-        c.running_times_s.push_back(t);
+        times.push_back(t);
         sum_ms += t;
       }
       // Keep the trip time to the millisecond: the rounding goes to the longest section.
-      const std::size_t longest = static_cast<std::size_t>(
-          std::max_element(c.running_times_s.begin(), c.running_times_s.end()) -
-          c.running_times_s.begin());
-      c.running_times_s[longest] =
-          std::round((c.running_times_s[longest] + running - sum_ms) * 1000.0) / 1000.0;
-      c.plan = plan_from_pattern(base.stations, c.running_times_s, c.dwells_s, departures);
-      const MonteCarlo mc(library, c.plan, simulation, runs);
-      const DayRecord plan_day = mc.plan_day();
-      c.plan_traction_kJ = plan_day.traction_kJ;
-      c.plan_substation_kJ = plan_day.substation_kJ;
-      const std::vector<DayRecord> days = mc.run_days(0, options.search_days, options.threads);
-      c.statistics = summarise(days, pooled_histogram(days));
-      c.meets_target = c.statistics.punctuality.mean >= options.target_punctuality;
-      out.candidates.push_back(std::move(c));
-      if (progress) progress(static_cast<int>(out.candidates.size()), total);
+      const std::size_t longest =
+          static_cast<std::size_t>(std::max_element(times.begin(), times.end()) - times.begin());
+      times[longest] = std::round((times[longest] + running - sum_ms) * 1000.0) / 1000.0;
+      const Plan plan = plan_from_pattern(base.stations, times, w, departures);
+      for (double early : options.run_early_s) {
+        PlanCandidate c;
+        c.theta = theta;
+        c.extra_dwell_s = extra;
+        c.run_early_s = early;
+        c.dwells_s = w;
+        c.running_times_s = times;
+        c.plan = plan;
+        MonteCarloOptions sim = simulation;
+        sim.run_early_s = early;
+        const MonteCarlo mc(library, c.plan, sim, runs);
+        const DayRecord plan_day = mc.plan_day();
+        c.plan_traction_kJ = plan_day.traction_kJ;
+        c.plan_substation_kJ = plan_day.substation_kJ;
+        const std::vector<DayRecord> days = mc.run_days(0, options.search_days, options.threads);
+        c.statistics = summarise(days, pooled_histogram(days));
+        c.meets_target = c.statistics.punctuality.mean >= options.target_punctuality;
+        out.candidates.push_back(std::move(c));
+        if (progress) progress(static_cast<int>(out.candidates.size()), total);
+      }
     }
   }
   if (out.candidates.empty())

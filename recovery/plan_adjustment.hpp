@@ -6,7 +6,9 @@
 // intermediate stop (at most max_dwell_s); the running time left is split as
 // (1 - theta) x the energy-optimal split (one time price) + theta x equal margins above the
 // flat-out times (theta = 0: the energy-optimal plan; theta = 1: every section the same
-// margin, the most even protection against a delay on any section). Every candidate is run on
+// margin, the most even protection against a delay on any section); and the plan may be run
+// ahead of the timetable by run_early_s within the early allowance (the same running times and
+// so the same plan energy; a buffer against delays). Every candidate is run on
 // the same days with the same seed (common random numbers) and the exact recovery; the chosen
 // one has the least mean substation energy among those whose mean punctuality reaches the
 // target (or, when none does, the most punctual, flagged).
@@ -24,6 +26,9 @@ namespace ecorail::recovery {
 struct PlanAdjustmentOptions {
   std::vector<double> thetas = {0.0, 0.25, 0.5, 0.75, 1.0};
   std::vector<double> extra_dwells_s = {0.0, 3.0};
+  // Operating offsets: the plan run this much ahead of the timetable (MonteCarloOptions::
+  // run_early_s), within the early allowance.
+  std::vector<double> run_early_s = {0.0};
   double max_dwell_s = 45.0;
   std::uint64_t search_days = 200;
   double target_punctuality = 0.97;
@@ -33,7 +38,7 @@ struct PlanAdjustmentOptions {
 };
 
 struct PlanCandidate {
-  double theta = 0.0, extra_dwell_s = 0.0;
+  double theta = 0.0, extra_dwell_s = 0.0, run_early_s = 0.0;
   std::vector<double> running_times_s, dwells_s;
   Plan plan;
   MonteCarloStatistics statistics;

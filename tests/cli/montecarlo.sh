@@ -76,6 +76,16 @@ for a, b in zip(e["days"], r["days"]):
     assert a["traction_kJ"] <= b["traction_kJ"] * (1 + 1e-9), (a["day"], a["traction_kJ"], b["traction_kJ"])
 PY
 
+# Punctual caps: at least the exact recovery's punctuality on the same days.
+"$ecorail" "${run[@]}" --recovery exact-punctual --json capped.json > /dev/null \
+  || { echo "FAIL: exact-punctual"; fail=1; }
+python3 - <<'PY' || fail=1
+import json
+e, c = json.load(open("t1.json")), json.load(open("capped.json"))
+assert c["config"]["recovery"] == "exact-punctual"
+assert sum(d["punctual"] for d in c["days"]) >= sum(d["punctual"] for d in e["days"])
+PY
+
 # Plan adjustment: the chosen plan is a timetable CSV montecarlo reads; trips keep their ends.
 "$ecorail" montecarlo --plan plan.csv --seed 4 "${cache[@]}" --quiet --adjust --search-days 6 \
   --thetas 0,1 --extra-dwells 0 --target 0.5 --adjusted-csv adj.csv --json adj.json > adj.txt \
@@ -106,4 +116,5 @@ expect_error "nothere.csv" montecarlo --plan nothere.csv --days 3 --json x.json
 expect_error "--svg-prefix" "${run[@]}" --svg-prefix nodir/p
 expect_error "days" montecarlo merge s1.json --json x.json
 expect_error "early_s" "${run[@]}" --early -1 --json x.json
+expect_error "run_early_s" "${run[@]}" --run-early 11 --json x.json
 exit $fail

@@ -211,6 +211,55 @@ TEST(MonteCarlo, StatisticsAreTheSameBytesForAnyThreadsAndShards) {
   EXPECT_THROW(merge_runs({s1, s1, s2}), std::invalid_argument);  // days repeated
 }
 
+TEST(MonteCarlo, RunningThePlanEarlyIsABufferThatCostsNoPlanEnergy) {
+  const Plan plan = small_plan({0.0, 98.0, 300.0});
+  MonteCarloOptions early = small_options();
+  early.run_early_s = 10.0;
+  const MonteCarlo a(small_library(), plan, small_options(), small_runs());
+  const MonteCarlo b(small_library(), plan, early, small_runs());
+  const DayRecord pa = a.plan_day(), pb = b.plan_day();
+  // Every train 10 s early: the same runs, the same overlaps (the grid shifts by whole bins).
+  EXPECT_EQ(pa.traction_kJ, pb.traction_kJ);
+  EXPECT_NEAR(pa.substation_kJ, pb.substation_kJ, 1e-9 * pa.substation_kJ);
+  EXPECT_EQ(pb.punctual, pb.arrivals);
+  // An 8 s delay leaves the early-running train still 2 s ahead of the timetable: no lateness;
+  // the train on time to the timetable is 8 s late at the next stop's arrival, unless recovered.
+  const std::vector<ForcedDelay> forced = {{1, 0, 8.0}};
+  const DayRecord db = b.simulate_day(0, &forced);
+  EXPECT_EQ(db.lateness_sum_s, 0.0);
+  EXPECT_EQ(db.punctual, db.arrivals);
+  EXPECT_EQ(db.recoveries, 1);  // it still returns to its operating plan
+  const std::vector<ForcedDelay> forced_late = {{1, 0, 30.0}};
+  const DayRecord da = a.simulate_day(0, &forced_late), dl = b.simulate_day(0, &forced_late);
+  EXPECT_GT(da.lateness_sum_s, dl.lateness_sum_s + 9.0);  // 10 s less at the first stop
+}
+
+TEST(MonteCarlo, PunctualCapsKeepArrivalsOnTheWayPunctualAtLeastEnergy) {
+  // 25 s late at A6, 20 s margins: flat out reaches A7 5 s late, so the recovery station is A8.
+  // The exact split spreads the lateness (A7 about 12 s late: not punctual); with punctual caps
+  // A7 is reached exactly 10 s late, A8 on time; the rule reaches A7 5 s late.
+  const Plan plan = small_plan({0.0, 900.0});
+  MonteCarloOptions exact = small_options(), capped = small_options(), rule = small_options();
+  capped.recovery = RecoveryPolicy::ExactPunctual;
+  rule.recovery = RecoveryPolicy::Rule;
+  const std::vector<ForcedDelay> forced = {{0, 0, 25.0}};
+  const DayRecord de =
+      MonteCarlo(small_library(), plan, exact, small_runs()).simulate_day(0, &forced);
+  const DayRecord dc =
+      MonteCarlo(small_library(), plan, capped, small_runs()).simulate_day(0, &forced);
+  const DayRecord dr =
+      MonteCarlo(small_library(), plan, rule, small_runs()).simulate_day(0, &forced);
+  EXPECT_EQ(de.punctual, de.arrivals - 1);
+  EXPECT_EQ(dc.punctual, dc.arrivals);
+  EXPECT_EQ(dr.punctual, dr.arrivals);
+  EXPECT_NEAR(dc.max_lateness_s, 10.0, 1e-6);
+  EXPECT_GT(de.max_lateness_s, 10.5);
+  EXPECT_NEAR(dr.max_lateness_s, 5.0, 1e-3);
+  // Energy: the exact split, then the capped one, then the rule.
+  EXPECT_LT(de.traction_kJ, dc.traction_kJ);
+  EXPECT_LT(dc.traction_kJ, dr.traction_kJ);
+}
+
 TEST(MonteCarloStatistics, ConfidenceIntervalIsTheStudentInterval) {
   const Estimate e = estimate({1.0, 2.0, 3.0, 4.0});
   EXPECT_DOUBLE_EQ(e.mean, 2.5);
