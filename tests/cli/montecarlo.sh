@@ -3,7 +3,8 @@
 # `ecorail timetable evaluate --csv`): JSON, CSV and the three SVGs with the documented keys
 # and sane values; the statistics JSON byte for byte the same for 1 thread, 2 threads, two
 # shards merged and (when ecorail-montecarlo-mpi was built) `mpirun -np 2`; --adjust writes a
-# plan that montecarlo reads back; bad input exits 2 with one line and no file left behind.
+# plan that montecarlo reads back; a progress line on a terminal only; bad input exits 2 with
+# one line and no file left behind.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 export XDG_CACHE_HOME="$work/xdg"
@@ -103,6 +104,17 @@ for x, y in zip(rows, base):
 PY
 "$ecorail" montecarlo --plan adj.csv --days 4 "${cache[@]}" --quiet > /dev/null \
   || { echo "FAIL: the adjusted plan does not run"; fail=1; }
+
+# A progress line on a terminal (faked with util-linux `script`), none with --quiet.
+if command -v script > /dev/null; then
+  tty_run="$ecorail montecarlo --plan plan.csv --days 12 --seed 4 ${cache[*]}"
+  script -qec "$tty_run 2>&1 >/dev/null" /dev/null > tty.txt || { echo "FAIL: on a tty"; fail=1; }
+  grep -q "ecorail montecarlo: " tty.txt || { echo "FAIL: no progress on a terminal"; cat -v tty.txt; fail=1; }
+  script -qec "$tty_run --quiet 2>&1 >/dev/null" /dev/null > quiet.txt || { echo "FAIL: --quiet on a tty"; fail=1; }
+  if grep -q "ecorail montecarlo:" quiet.txt; then echo "FAIL: progress despite --quiet"; fail=1; fi
+else
+  echo "SKIP: progress on a terminal (no util-linux script)"
+fi
 
 # Bad input: exit 2, one line, nothing written.
 expect_error "--shard" "${run[@]}" --shard 3/2 --json x.json
