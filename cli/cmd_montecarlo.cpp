@@ -22,6 +22,7 @@
 #include "cli/problem_options.hpp"
 #include "cli/progress.hpp"
 #include "data/atomic_file.hpp"
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
@@ -151,9 +152,12 @@ void add_run_outputs(data::OutputBatch& batch, const recovery::MonteCarloRun& ru
   const std::vector<std::string> svgs = svg_paths(a.svg_prefix);
   if (svgs.empty()) return;
   const recovery::MonteCarloStatistics s = recovery::summarise(run.days, run.histogram);
-  const std::string what = run.config.value("plan", std::string("plan")) + ", " +
-                           run.config.value("recovery", std::string("")) + " recovery, " +
-                           std::to_string(run.days.size()) + " days";
+  const double early = run.config.value("run_early_s", 0.0);
+  const std::string what =
+      run.config.value("plan", std::string("plan")) +
+      (early > 0.0 ? ", run " + data::format_number(early) + " s early" : std::string()) + ", " +
+      run.config.value("recovery", std::string("")) + " recovery, " +
+      std::to_string(run.days.size()) + " days";
   batch.add_produced(svgs[0], [&run, what](const std::filesystem::path& f) {
     output::write_lateness_histogram(f, run.histogram, "Arrival lateness: " + what);
   });
