@@ -9,6 +9,7 @@
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "cli/progress.hpp"
+#include "cli/timing_journey_solve.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
 #include "dp/journey.hpp"
@@ -28,6 +29,7 @@ struct SolveArgs {
   JourneyArgs journey;
   double time_s = 0.0;
   bool full_report = false;
+  std::string journey_path;  // --journey: a TTOBench journey with timing points
 };
 
 // A speed hold is named as one ("speed_hold"), so the table reads as advice.
@@ -60,7 +62,24 @@ output::SummaryRows summary_rows(const dp::SectionSolveSummary& s) {
           {"grid_dv_kmh", s.grid.dv_kmh}};
 }
 
-void run_solve(const SolveArgs& a) {
+void run_solve(const SolveArgs& a, const CLI::App& cmd) {
+  if (!a.journey_path.empty()) {
+    // The journey file gives the stops and the times.
+    for (const char* flag : {"--from", "--to", "--time", "--pass-through", "--dwell", "--split",
+                             "--min-regime-m", "--min-regime-s", "--marginals"}) {
+      if (cmd.count(flag) > 0) {
+        throw data::InputError("command line", 0, flag,
+                               "no " + std::string(flag) +
+                                   " with --journey (the journey file gives the stops and the "
+                                   "times)");
+      }
+    }
+    run_timing_journey(a.problem, a.journey_path, a.outputs, a.full_report, a.journey.quiet);
+    return;
+  }
+  for (const char* flag : {"--from", "--to", "--time"}) {
+    if (cmd.count(flag) == 0) throw CLI::RequiredError(flag);
+  }
   if (!(a.time_s > 0.0)) {
     throw data::InputError("command line", 0, "--time", "a running time in seconds > 0");
   }
@@ -122,8 +141,12 @@ void run_solve(const SolveArgs& a) {
 void add_solve_command(CLI::App& app) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd = app.add_subcommand("solve", "energy-optimal run for a running time");
-  add_problem_options(cmd, args->problem);
-  cmd->add_option("--time", args->time_s, "running time in s (dwells excluded)")->required();
+  // --from, --to and --time are required unless --journey gives the stops and times.
+  add_problem_options(cmd, args->problem, false);
+  cmd->add_option("--time", args->time_s, "running time in s (dwells excluded)");
+  cmd->add_option("--journey", args->journey_path,
+                  "a TTOBench journey (timing points with time and speed windows) on the --line "
+                  "track; instead of --from/--to/--time (docs/ttobench.md)");
   cmd->add_flag("--full-report", args->full_report, "print the full solver report");
   cmd->add_option("--min-regime-m", args->journey.min_regime.min_length_m,
                   "merge control phases shorter than this (m) into the phase before them, "
@@ -148,7 +171,7 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   add_output_options(cmd, args->outputs);
   add_gtfs_options(cmd, args->outputs);
-  cmd->callback([args] { run_solve(*args); });
+  cmd->callback([args, cmd] { run_solve(*args, *cmd); });
 }
 
 }  // namespace ecorail::cli

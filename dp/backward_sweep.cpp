@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "dp/stage_work.hpp"
 
@@ -16,10 +17,15 @@ double ValueFunction::at(const StageGrid& grid, int i, double v_ms) const {
   return w > 0.0 ? lo + w * (cost_to_go[lower + 1] - lo) : lo;
 }
 
-void backward_sweep(const StageGrid& grid, const TransitionTable& table, double lambda,
-                    ValueFunction& value) {
+namespace {
+
+// The sweep for a price per stage (price(i): the price of a transition out of stage i) and, if
+// band_of is not empty, the speed band of each stage (nullptr: none). One body for both forms,
+// so a constant price makes the same arithmetic as the single-price sweep.
+template <typename PriceOf>
+void sweep(const StageGrid& grid, const TransitionTable& table, const PriceOf& price_of,
+           const std::vector<const SpeedBand*>& band_of, ValueFunction& value) {
   const int last = grid.stage_count() - 1;
-  value.lambda = lambda;
   value.cost_to_go.assign(grid.total_nodes(), kInfeasible);
   value.best.assign(grid.total_nodes(), 0);
   value.cost_to_go[grid.offset(last)] = 0.0;  // at rest at the stop
@@ -39,6 +45,8 @@ void backward_sweep(const StageGrid& grid, const TransitionTable& table, double 
   {
     const int me = omp_get_thread_num();
     for (int i = last - 1; i >= 0; --i) {
+      const double lambda = price_of(i);
+      const SpeedBand* band = band_of.empty() ? nullptr : band_of[i];
       const int begin = grid.offset(i);
       const int end_of_stage = begin + grid.node_count(i);
       for (int c = work.take(i, me); c >= 0; c = work.take(i, me)) {
@@ -58,6 +66,11 @@ void backward_sweep(const StageGrid& grid, const TransitionTable& table, double 
               best_c = static_cast<std::uint8_t>(k);
             }
           }
+          if (band != nullptr) {
+            // Outside the timing point's speed window: no run may pass here.
+            const double v = grid.speed(i, node - begin);
+            if (v < band->min_ms || v > band->max_ms) best_cost = kInfeasible;
+          }
           J[node] = best_cost;
           best[node] = best_c;
         }
@@ -65,6 +78,39 @@ void backward_sweep(const StageGrid& grid, const TransitionTable& table, double 
       }
     }
   }
+}
+
+}  // namespace
+
+void backward_sweep(const StageGrid& grid, const TransitionTable& table, double lambda,
+                    ValueFunction& value) {
+  value.lambda = lambda;
+  value.stage_lambda.clear();
+  sweep(
+      grid, table, [lambda](int) { return lambda; }, {}, value);
+}
+
+void backward_sweep(const StageGrid& grid, const TransitionTable& table, const StagePrices& prices,
+                    ValueFunction& value) {
+  const int last = grid.stage_count() - 1;
+  if (static_cast<int>(prices.lambda_J_per_s.size()) != last) {
+    throw std::invalid_argument("stage prices: one price per transition (stage_count - 1) needed");
+  }
+  std::vector<const SpeedBand*> band_of;
+  if (!prices.bands.empty()) {
+    band_of.assign(grid.stage_count(), nullptr);
+    for (const SpeedBand& b : prices.bands) {
+      if (b.stage < 0 || b.stage >= last) {
+        throw std::invalid_argument("stage prices: a speed band's stage is outside the grid");
+      }
+      band_of[b.stage] = &b;
+    }
+  }
+  value.lambda = prices.lambda_J_per_s.back();
+  value.stage_lambda = prices.lambda_J_per_s;
+  const std::vector<double>& lambdas = prices.lambda_J_per_s;
+  sweep(
+      grid, table, [&lambdas](int i) { return lambdas[i]; }, band_of, value);
 }
 
 }  // namespace ecorail::dp

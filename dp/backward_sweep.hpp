@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dp/stage_grid.hpp"
+#include "dp/stage_prices.hpp"
 #include "dp/transition_table.hpp"
 
 namespace ecorail::dp {
@@ -20,14 +21,22 @@ inline bool is_feasible(double cost) {
 
 struct ValueFunction {
   double lambda = 0.0;
+  // With stage prices: the price of each transition out of stage i (empty: lambda everywhere).
+  std::vector<double> stage_lambda;
   std::vector<double> cost_to_go;  // per global node
   std::vector<std::uint8_t> best;  // optimal control per global node
 
   // Cost-to-go at stage i interpolated at speed v.
   double at(const StageGrid& grid, int i, double v_ms) const;
+  // The time price of the transition out of stage i.
+  double price(int i) const { return stage_lambda.empty() ? lambda : stage_lambda[i]; }
 };
 
 void backward_sweep(const StageGrid& grid, const TransitionTable& table, double lambda,
+                    ValueFunction& value);
+// The same with a price per stage and speed bands (dp/stage_prices.hpp); value.lambda is set to
+// the last stage's price.
+void backward_sweep(const StageGrid& grid, const TransitionTable& table, const StagePrices& prices,
                     ValueFunction& value);
 
 }  // namespace ecorail::dp

@@ -25,7 +25,7 @@ struct Scorer {
     const double energy =
         energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
                       adv.traction_input_J, adv.regen_J);
-    return energy + value.lambda * adv.time_s +
+    return energy + value.price(next - 1) * adv.time_s +
            value.at(grid, next, physics::speed_from_e(adv.e_end));
   }
 

@@ -1,6 +1,7 @@
 #include "dp/section_engine.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "dp/resource_estimate.hpp"
@@ -115,8 +116,77 @@ LambdaRun SectionEngine::run(double lambda, const StartState& start) const {
   return run(lambda, start, options_.resim_step_m);
 }
 
+ValueFunction SectionEngine::sweep(const StagePrices& prices) const {
+  const ThreadScope threads(options_.threads);
+  std::unique_ptr<TransitionTable> local;
+  ValueFunction value;
+  backward_sweep(grid_, table_for_sweep(local), prices, value);
+  return value;
+}
+
 LambdaRun SectionEngine::run(double lambda, const StartState& start, double resim_step_m) const {
-  const ValueFunction value = sweep(lambda);
+  return run_from(sweep(lambda), start, resim_step_m);
+}
+
+LambdaRun SectionEngine::run(const StagePrices& prices, const StartState& start,
+                             double resim_step_m) const {
+  return run_from(sweep(prices), start, resim_step_m);
+}
+
+namespace {
+
+// Positions where a stage-priced value function's price changes.
+std::vector<double> price_changes_m(const StageGrid& grid, const ValueFunction& value) {
+  std::vector<double> cuts;
+  for (std::size_t i = 1; i < value.stage_lambda.size(); ++i) {
+    if (value.stage_lambda[i] != value.stage_lambda[i - 1]) {
+      cuts.push_back(grid.position(static_cast<int>(i)));
+    }
+  }
+  return cuts;
+}
+
+// hold_cruising applied to each stretch between cuts on its own; the same program when no
+// stretch has a saw tooth.
+physics::ControlProgram hold_cruising_by_stretch(const physics::ControlProgram& program,
+                                                 const physics::SimulationResult& sim,
+                                                 const std::vector<double>& cuts) {
+  if (cuts.empty()) return hold_cruising(program, sim);
+  std::vector<double> bounds = {-1.0};
+  bounds.insert(bounds.end(), cuts.begin(), cuts.end());
+  bounds.push_back(std::numeric_limits<double>::infinity());
+  physics::ControlProgram out;
+  bool changed = false;
+  for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
+    const double lo = bounds[b], hi = bounds[b + 1];
+    physics::ControlProgram piece;
+    for (std::size_t i = 0; i < program.size(); ++i) {
+      if (program[i].from_m >= lo && program[i].from_m < hi) piece.push_back(program[i]);
+    }
+    if (b > 0 && (piece.empty() || piece.front().from_m > lo)) {
+      // The control running into the stretch goes on at its start.
+      physics::Control running = program.front().control;
+      for (const auto& step : program) {
+        if (step.from_m <= lo) running = step.control;
+      }
+      piece.insert(piece.begin(), {lo, running});
+    }
+    if (piece.empty()) continue;
+    physics::ControlProgram held = hold_cruising(piece, sim);
+    changed = changed || held.size() < piece.size();
+    for (const auto& step : held) {
+      if (!out.empty() && out.back().control == step.control) continue;
+      out.push_back(step);
+    }
+  }
+  return changed ? out : program;
+}
+
+}  // namespace
+
+LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& start,
+                                  double resim_step_m) const {
+  const double lambda = value.lambda;
   ExtractionSettings settings;
   settings.start_position_m = start.position_m;
   settings.start_speed_ms = start.speed_ms;
@@ -128,8 +198,13 @@ LambdaRun SectionEngine::run(double lambda, const StartState& start, double resi
   out.program = extract_program(motion_, grid_, value, options_.objective, settings);
   out.sim = simulate(out.program, start, resim_step_m);
   if (options_.cruise_as_hold) {
-    physics::ControlProgram held = hold_cruising(out.program, out.sim);
-    if (held.size() < out.program.size()) {
+    // A stage-priced run cruises at a different speed on each side of a price change, so its
+    // cruises are held stretch by stretch.
+    physics::ControlProgram held =
+        value.stage_lambda.empty()
+            ? hold_cruising(out.program, out.sim)
+            : hold_cruising_by_stretch(out.program, out.sim, price_changes_m(grid_, value));
+    if (held.size() != out.program.size()) {
       out.program = std::move(held);
       out.sim = simulate(out.program, start, resim_step_m);
     }

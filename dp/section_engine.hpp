@@ -14,6 +14,7 @@
 #include "dp/objective.hpp"
 #include "dp/policy_extraction.hpp"
 #include "dp/stage_grid.hpp"
+#include "dp/stage_prices.hpp"
 #include "dp/transition_table.hpp"
 #include "physics/simulator.hpp"
 
@@ -68,9 +69,13 @@ class SectionEngine {
   // cheap evaluation (RK4 at 0.5 m puts the running time within about a millisecond of the fine
   // run's); the result a user is given is always run(lambda) at the fine step.
   LambdaRun run(double lambda, const StartState& start, double resim_step_m) const;
+  // The run for a price per stage and speed bands (dp/stage_prices.hpp): a journey's timing
+  // points. Its lambda is the last stage's price.
+  LambdaRun run(const StagePrices& prices, const StartState& start, double resim_step_m) const;
   // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
   // policy tables.
   ValueFunction sweep(double lambda) const;
+  ValueFunction sweep(const StagePrices& prices) const;
   // The table (built and kept on first use when the engine does not keep its tables).
   const TransitionTable& transitions() const;
   // Whether the engine holds a transition table now (not while it streams its tables).
@@ -94,6 +99,10 @@ class SectionEngine {
   const EngineOptions& options() const { return options_; }
 
  private:
+  // Extraction and re-simulation of the program a value function implies.
+  LambdaRun run_from(const ValueFunction& value, const StartState& start,
+                     double resim_step_m) const;
+
   physics::Train train_;
   physics::Route route_;
   EngineOptions options_;

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# `ecorail solve --journey J.json` (TTOBench timing points) on a small track made here, at a
+# coarse grid: the windows hold in the written re-simulation and a binding one is named; a
+# window no run can meet is refused naming it (exit 2, nothing written); --journey does not go
+# with --from/--to/--time; malformed journeys name their JSON path.
+set -uo pipefail
+source "$(dirname "$0")/lib/common.sh" "$@"
+
+cat > track.data <<'JSON'
+{"metadata": {"id": "flat_3km", "library version": "TTOBench v1.4"},
+ "stops": {"unit": "m", "values": [0, 3000]},
+ "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 80]]},
+ "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
+JSON
+cat > train.data <<'JSON'
+{"metadata": {"id": "hand_train", "library version": "TTOBench v1.4"},
+ "mass": {"unit": "t", "value": 200}, "rho": {"unit": "%", "value": 5},
+ "max traction power": {"unit": "kW", "value": 2000}, "max reg braking power": {"unit": "kW", "value": 2000},
+ "max traction force": {"unit": "kN", "value": 200}, "max reg braking force": {"unit": "kN", "value": 150},
+ "max pn braking force": {"unit": "kN", "value": 50}, "max speed": {"unit": "km/h", "value": 100},
+ "rolling resistance r0": {"unit": "kN", "value": 2}, "rolling resistance r1": {"unit": "kN/(km/h)", "value": 0.02},
+ "rolling resistance r2": {"unit": "kN/(km/h)^2", "value": 0.0005},
+ "efficiency traction": {"unit": "%", "value": 90}, "efficiency reg brake": {"unit": "%", "value": 80}}
+JSON
+journey() {  # journey FILE VALUES: a journey file with the given timing points
+  cat > "$1" <<JSON
+{"metadata": {"id": "flat_3km_J", "library version": "TTOBench v1.5", "associated track": "flat_3km"},
+ "timing points": {"units": {"position": "m", "lower time constraint": "s", "upper time constraint": "s",
+   "lower speed constraint": "km/h", "upper speed constraint": "km/h"},
+   "values": $2}}
+JSON
+}
+grid=(--ds 5 --dv 0.5 --quiet)
+
+# The plain solve for 190 s passes 1500 m at some time; a window 5 s earlier than that binds.
+"$ecorail" solve --line track.data --train train.data --from S0 --to S1 --time 190 "${grid[@]}" \
+  --json plain.json > /dev/null 2> err.txt || { echo "FAIL: plain solve"; cat err.txt; fail=1; }
+journey free.json '[[0,0,0,0,0],[1500,30,170,null,null],[3000,150,190,0,0]]'
+"$ecorail" solve --line track.data --train train.data --journey free.json "${grid[@]}" --json free_out.json \
+  --csv free.csv > /dev/null 2> err.txt || { echo "FAIL: journey with free windows"; cat err.txt; fail=1; }
+python3 - plain.json free_out.json <<'PY' || fail=1
+import json, sys
+plain, j = (json.load(open(f)) for f in sys.argv[1:])
+assert j["windows_met"] is True, j["windows_met"]
+w = j["windows"]
+assert len(w) == 3 and w[1]["position_m"] == 1500 and w[1]["min_speed_kmh"] is None, w
+for x in w:
+    for k in ("position_m", "earliest_s", "latest_s", "min_speed_kmh", "max_speed_kmh", "time_s", "speed_kmh", "binds"):
+        assert k in x, (k, x)
+assert w[1]["binds"] is None, w[1]
+assert w[2]["binds"] == "latest" and abs(w[2]["time_s"] - 190) < 0.05, w[2]
+# A window that does not bind leaves the plain optimum as it is.
+assert abs(j["traction_energy_kJ"] - plain["traction_energy_kJ"]) <= 1e-4 * plain["traction_energy_kJ"], (j["traction_energy_kJ"], plain["traction_energy_kJ"])
+open("t_free.txt", "w").write("%.0f" % w[1]["time_s"])
+PY
+t_free=$(cat t_free.txt 2> /dev/null || echo 100)
+latest=$((t_free - 5))
+journey bind.json "[[0,0,0,0,0],[1500,0,$latest,null,null],[3000,150,190,0,0]]"
+"$ecorail" solve --line track.data --train train.data --journey bind.json "${grid[@]}" --json bind_out.json \
+  > /dev/null 2> err.txt || { echo "FAIL: journey with a binding window"; cat err.txt; fail=1; }
+python3 - bind_out.json free_out.json "$latest" <<'PY' || fail=1
+import json, sys
+j, free = (json.load(open(f)) for f in sys.argv[1:3])
+latest = float(sys.argv[3])
+w = j["windows"]
+assert j["windows_met"] is True
+assert w[1]["binds"] == "latest" and abs(w[1]["time_s"] - latest) <= 0.05, w[1]
+assert w[2]["time_s"] <= 190.05, w[2]
+# Meeting the window costs energy.
+assert j["traction_energy_kJ"] > free["traction_energy_kJ"], (j["traction_energy_kJ"], free["traction_energy_kJ"])
+PY
+
+# A window below the flat-out time: refused naming it, nothing written.
+journey fast.json '[[0,0,0,0,0],[1500,0,20,null,null],[3000,150,190,0,0]]'
+expect_error "fast.json: field 'timing points.values[1]'" solve --line track.data --train train.data \
+  --journey fast.json "${grid[@]}" --json out.json --csv out.csv
+grep -q "needs at least" stderr.txt || { echo "FAIL: no minimum time in the message"; cat stderr.txt; fail=1; }
+
+# --journey goes alone; --from/--to/--time without it are still required.
+expect_error "--time" solve --line track.data --train train.data --journey free.json --time 100
+expect_error "--from" solve --line track.data --train train.data --journey free.json --from S0
+expect_error "--time is required" solve --line track.data --train train.data --from S0 --to S1
+
+# Malformed journeys name the JSON path.
+journey short.json '[[0,0,0,0,0]]'
+expect_error "short.json: field 'timing points.values'" solve --line track.data --train train.data --journey short.json
+journey backwards.json '[[0,0,0,0,0],[2000,null,null,null,null],[1500,0,190,0,0]]'
+expect_error "field 'timing points.values[2][0]'" solve --line track.data --train train.data --journey backwards.json
+
+[ "$fail" -eq 0 ] && echo "timing_journey: ok"
+exit "$fail"

@@ -1,0 +1,256 @@
+// Journeys with timing points (dp/timing_journey.hpp) and the stage prices under them
+// (dp/stage_prices.hpp), on a short level track at a coarse grid so the tests stay cheap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "data/train_io.hpp"
+#include "dp/section_engine.hpp"
+#include "dp/time_target.hpp"
+#include "dp/timing_journey.hpp"
+#include "physics/units.hpp"
+
+namespace ecorail::dp {
+namespace {
+
+constexpr double kOpen = std::numeric_limits<double>::infinity();
+
+// A 3 km track, level but for a 6 per mille rise in its middle, limit 80 km/h.
+physics::Route test_track() {
+  std::vector<physics::RouteSegment> segs(3);
+  const double ends[] = {1200.0, 1800.0, 3000.0};
+  double start = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = start;
+    segs[i].end_m = ends[i];
+    segs[i].gradient_permille = i == 1 ? 6.0 : 0.0;
+    segs[i].speed_limit_ms = units::kmh_to_ms(80.0);
+    start = ends[i];
+  }
+  return physics::Route(segs, 0.0, 1, "T0", "T1");
+}
+
+TimingJourneyOptions coarse() {
+  TimingJourneyOptions o;
+  o.engine.grid.ds_m = 10.0;
+  o.engine.grid.dv_kmh = 0.5;
+  o.engine.grid.substep_m = 5.0;
+  return o;
+}
+
+TimingWindow stop_at(double s, double earliest, double latest) {
+  return {s, earliest, latest, 0.0, 0.0};
+}
+TimingWindow pass_at(double s, double earliest, double latest) {
+  return {s, earliest, latest, -kOpen, kOpen};
+}
+
+// The plain running-time optimum of the whole track (one price).
+TimeSearchResult plain(const physics::Train& train, const physics::Route& route, double time_s) {
+  const SectionEngine engine(train, route, coarse().engine);
+  return solve_for_time(engine, time_s, TimeSearchOptions{});
+}
+
+TEST(StagePrices, OnePriceEverywhereIsTheSinglePriceSweepBitForBit) {
+  const physics::Train train = data::default_train();
+  const SectionEngine engine(train, test_track(), coarse().engine);
+  for (double lambda : {2e5, 6.5e5}) {
+    StagePrices prices;
+    prices.lambda_J_per_s.assign(engine.grid().stage_count() - 1, lambda);
+    const ValueFunction a = engine.sweep(lambda);
+    const ValueFunction b = engine.sweep(prices);
+    ASSERT_EQ(a.cost_to_go.size(), b.cost_to_go.size());
+    for (std::size_t i = 0; i < a.cost_to_go.size(); ++i) {
+      ASSERT_EQ(a.cost_to_go[i], b.cost_to_go[i]) << i;
+      ASSERT_EQ(a.best[i], b.best[i]) << i;
+    }
+  }
+}
+
+TEST(StagePrices, AHigherPriceBeforeAPointMakesThatStretchFaster) {
+  const physics::Train train = data::default_train();
+  const SectionEngine engine(train, test_track(), coarse().engine);
+  const int mid = engine.grid().stage_count() / 2;
+  StagePrices cheap, dear;
+  cheap.lambda_J_per_s.assign(engine.grid().stage_count() - 1, 3e5);
+  dear = cheap;
+  for (int i = 0; i < mid; ++i) dear.lambda_J_per_s[i] = 3e6;
+  const double s_mid = engine.grid().position(mid);
+  auto time_at = [&](const LambdaRun& run) {
+    for (const auto& p : run.sim.trace) {
+      if (p.s_m >= s_mid) return p.t_s;
+    }
+    return kOpen;
+  };
+  const LambdaRun a = engine.run(cheap, {}, engine.options().resim_step_m);
+  const LambdaRun b = engine.run(dear, {}, engine.options().resim_step_m);
+  ASSERT_TRUE(run_arrives(a.sim) && run_arrives(b.sim));
+  EXPECT_LT(time_at(b), time_at(a) - 1.0);
+}
+
+TEST(TimingJourney, WindowsThatDoNotBindGiveThePlainOptimum) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TimeSearchResult ref = plain(train, track, 240.0);
+  ASSERT_TRUE(ref.converged);
+  // A wide passing window at 1500 m and an arrival window ending at 240 s.
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 30, 200),
+                                       stop_at(3000, 200, 240)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "wide");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  EXPECT_TRUE(sol.windows_met);
+  const auto& sim = sol.journey.sections.at(0).run.sim;
+  EXPECT_NEAR(sim.energy.traction_work_J, ref.run.sim.energy.traction_work_J,
+              1e-4 * ref.run.sim.energy.traction_work_J);
+  EXPECT_TRUE(sol.windows[1].binds.empty());
+  ASSERT_EQ(sol.windows[2].binds.size(), 1u);
+  EXPECT_EQ(sol.windows[2].binds[0], "latest");
+}
+
+// The binding case against a brute force over the two prices: every run of a lattice of
+// (price before the point, price after it) that meets both windows costs at least as much as
+// the solver's run; and the rest of the run from the point is as cheap as a fresh optimum of
+// that rest (principle of optimality; the restart search is the engine's plain one).
+TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TimeSearchResult ref = plain(train, track, 240.0);
+  ASSERT_TRUE(ref.converged);
+  double t_free = 0.0;
+  for (const auto& p : ref.run.sim.trace) {
+    if (p.s_m >= 1500.0) {
+      t_free = p.t_s;
+      break;
+    }
+  }
+  const double latest = std::floor(t_free - 6.0);
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, latest),
+                                       stop_at(3000, 200, 240)};
+  const TimingJourneyOptions options = coarse();
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, options, "bind");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  EXPECT_NEAR(sol.windows[1].time_s, latest, options.time_tolerance_s);
+  ASSERT_EQ(sol.windows[1].binds.size(), 1u);
+  EXPECT_EQ(sol.windows[1].binds[0], "latest");
+  const auto& run = sol.journey.sections.at(0).run;
+  const double energy = run.sim.energy.traction_work_J;
+  // The constraint costs energy.
+  EXPECT_GT(energy, ref.run.sim.energy.traction_work_J);
+
+  const SectionEngine engine(train, track, options.engine);
+  const int stage = static_cast<int>(std::lround(1500.0 / options.engine.grid.ds_m));
+  double best_scan = kOpen;
+  for (double before = 3e5; before <= 3e6; before *= 1.25) {
+    for (double after = 1e5; after <= before; after *= 1.25) {
+      StagePrices p;
+      p.lambda_J_per_s.assign(engine.grid().stage_count() - 1, after);
+      for (int i = 0; i < stage; ++i) p.lambda_J_per_s[i] = before;
+      const LambdaRun r = engine.run(p, {}, engine.options().resim_step_m);
+      if (!run_arrives(r.sim) || r.sim.running_time_s > 240.0 + options.time_tolerance_s ||
+          r.sim.running_time_s < 200.0) {
+        continue;
+      }
+      double t_k = kOpen;
+      for (const auto& q : r.sim.trace) {
+        if (q.s_m >= 1500.0) {
+          t_k = q.t_s;
+          break;
+        }
+      }
+      if (t_k > latest + options.time_tolerance_s) continue;
+      best_scan = std::min(best_scan, r.sim.energy.traction_work_J);
+    }
+  }
+  ASSERT_TRUE(std::isfinite(best_scan));
+  EXPECT_LE(energy, best_scan * (1.0 + 2e-3)) << energy << " vs scan " << best_scan;
+
+  // The rest of the run from the point, re-solved from the same state for the same time.
+  physics::TracePoint at{};
+  for (const auto& q : run.sim.trace) {
+    if (q.s_m >= 1500.0) {
+      at = q;
+      break;
+    }
+  }
+  double rest_traction = 0.0;
+  for (std::size_t k = 1; k < run.sim.trace.size(); ++k) {
+    const auto& a = run.sim.trace[k - 1];
+    const auto& b = run.sim.trace[k];
+    if (a.s_m < at.s_m) continue;
+    const double work = b.force_N * (b.s_m - a.s_m);
+    if (work > 0.0) rest_traction += work;
+  }
+  const TimeSearchResult rest = solve_for_time(engine, run.sim.running_time_s - at.t_s,
+                                               TimeSearchOptions{}, {at.s_m, at.v_ms});
+  ASSERT_TRUE(rest.converged);
+  const double rest_opt = rest.run.sim.energy.traction_work_J;
+  EXPECT_LE(rest_traction, rest_opt * 1.01 + 1e4) << rest_traction << " vs " << rest_opt;
+}
+
+TEST(TimingJourney, AWindowBelowTheFlatOutTimeIsRefusedNamingIt) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const SectionEngine engine(train, track, coarse().engine);
+  double flat_at = 0.0;
+  for (const auto& p : engine.min_time_run().trace) {
+    if (p.s_m >= 1500.0) {
+      flat_at = p.t_s;
+      break;
+    }
+  }
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, flat_at - 2.0),
+                                       stop_at(3000, 200, 240)};
+  try {
+    solve_timing_journey(train, track, w, coarse());
+    FAIL() << "an infeasible window was accepted";
+  } catch (const WindowInfeasibleError& e) {
+    EXPECT_EQ(e.point(), 1);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("timing point 2 (1500.0 m)"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs at least"), std::string::npos) << what;
+  }
+}
+
+TEST(TimingJourney, ARunStartingAtOneMetrePerSecondStartsThere) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const std::vector<TimingWindow> w = {{0.0, 0.0, 0.0, 1.0, 1.0}, stop_at(3000, 200, 240)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  const auto& trace = sol.journey.sections.at(0).run.sim.trace;
+  ASSERT_FALSE(trace.empty());
+  EXPECT_DOUBLE_EQ(trace.front().v_ms, 1.0);
+  EXPECT_NEAR(sol.windows[0].speed_ms, 1.0, 1e-12);
+  EXPECT_NEAR(sol.windows[1].time_s, 240.0, 0.05);
+  // Ending moving is refused, naming the last point.
+  const std::vector<TimingWindow> end_moving = {stop_at(0, 0, 0), {3000.0, 200, 240, 1.0, 1.0}};
+  try {
+    solve_timing_journey(train, track, end_moving, coarse());
+    FAIL() << "an arrival at 1 m/s was accepted";
+  } catch (const WindowInfeasibleError& e) {
+    EXPECT_EQ(e.point(), 1);
+  }
+}
+
+TEST(TimingJourney, AStopSplitsTheJourneyIntoPartsWithTheirOwnTimes) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), stop_at(1500, 100, 120),
+                                       stop_at(1500, 150, 160), stop_at(3000, 250, 270)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_EQ(sol.parts.size(), 2u);
+  // Arrive at the latest, depart at the earliest.
+  EXPECT_NEAR(sol.windows[1].time_s, 120.0, 0.05);
+  EXPECT_NEAR(sol.windows[2].time_s, 150.0, 1e-9);
+  EXPECT_NEAR(sol.windows[3].time_s, 270.0, 0.05);
+  EXPECT_NEAR(sol.journey.sections[0].dwell_after_s, 30.0, 0.05);
+  const physics::Route first = slice_route(track, 0.0, 1500.0);
+  EXPECT_DOUBLE_EQ(first.length_m(), 1500.0);
+  EXPECT_DOUBLE_EQ(slice_route(track, 1500.0, 3000.0).at(10.0).gradient_permille, 6.0);
+}
+
+}  // namespace
+}  // namespace ecorail::dp
