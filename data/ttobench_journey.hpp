@@ -2,7 +2,7 @@
 // (any bound may be open: null), read with errors naming the file and JSON path. The first
 // point is the departure, the last the arrival; two points at the same position are the
 // arrival at and the departure from a stop. Speeds in m/s, times in s from the departure.
-// (Solving a journey subject to its windows is not implemented yet; see docs/ttobench.md.)
+// Solving a journey subject to its windows: dp/timing_journey.hpp (`solve --journey`).
 #pragma once
 
 #include <cmath>

@@ -87,5 +87,32 @@ expect_error "short.json: field 'timing points.values'" solve --line track.data 
 journey backwards.json '[[0,0,0,0,0],[2000,null,null,null,null],[1500,0,190,0,0]]'
 expect_error "field 'timing points.values[2][0]'" solve --line track.data --train train.data --journey backwards.json
 
+# The shared TTOBench journey, when present: infeasible under its documented reading (refused
+# naming the arrival window, nothing written); the labelled relaxed copy solves with every
+# window met, the one at 12500 m binding at its latest bound (coarse grid, about 10 s).
+tto="$src/../shared/data/ttobench"
+if [ -d "$tto/journeys" ]; then
+  stgw=(--line "$tto/tracks/CH_StGallen_Wil.json" --train "$tto/trains/CH_Stadler_KISS_SBB.json"
+        --ds 10 --dv 0.5 --quiet)
+  expect_error "field 'timing points.values[5]'" solve "${stgw[@]}" \
+    --journey "$tto/journeys/CH_StGallen_Wil_Journey_01.json" --json stgw.json
+  grep -q "latest 1450.0 s cannot be met" stderr.txt || { echo "FAIL: window not named"; cat stderr.txt; fail=1; }
+  "$ecorail" solve "${stgw[@]}" --journey "$src/data/ttobench/CH_StGallen_Wil_Journey_01_relaxed.json" \
+    --json relaxed.json > /dev/null 2> err.txt || { echo "FAIL: relaxed journey"; cat err.txt; fail=1; }
+  python3 - relaxed.json <<'PY' || fail=1
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["windows_met"] is True
+w = j["windows"]
+assert len(w) == 6
+for x in w:
+    if x["earliest_s"] is not None: assert x["time_s"] >= x["earliest_s"] - 0.05, x
+    if x["latest_s"] is not None: assert x["time_s"] <= x["latest_s"] + 0.05, x
+assert w[1]["binds"] == "latest", w[1]
+assert w[1]["speed_kmh"] >= 10.0, w[1]
+assert w[5]["time_s"] <= 1450.05 and w[5]["speed_kmh"] == 0.0, w[5]
+PY
+fi
+
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
 exit "$fail"
