@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Determinism (issue 15): the same inputs give the same bytes with 1 and 2 threads, and two
 # runs at the same time give the same bytes as one alone, for sections, journeys, frontiers and
-# the fleet commands (timetable evaluate and optimise). Only the wall times and the thread
+# the fleet commands (timetable evaluate and optimise, also on the DC network model) and a
+# delay recovery. Only the wall times and the thread
 # count differ in a JSON report (keys with "wall" or "threads", and the wall time that ends a
 # brief report); they are removed before comparing, nothing else is.
 set -uo pipefail
@@ -47,6 +48,12 @@ same frontier frontier --from A6 --to A7 --tmax 100 --step 2 --no-cache
 fleet=(--from A6 --to A8 --trains 4 --span 600 --headway 150:250 --trip-time 300)
 same evaluate timetable evaluate "${fleet[@]}" --uniform
 same optimise timetable optimise "${fleet[@]}"
+supply=(--model network --power-supply "$src/data/contest/power_supply.toml")
+same network_evaluate timetable evaluate "${fleet[@]}" --uniform "${supply[@]}"
+same network_optimise timetable optimise "${fleet[@]}" "${supply[@]}" --moves 300
+"$ecorail" timetable evaluate --from A6 --to A9 --trains 4 --span 600 --headway 150:250 \
+  --trip-time 400 --uniform --csv plan.csv --quiet > /dev/null || { echo "FAIL: plan"; fail=1; }
+same delay delay --plan plan.csv --train 2 --station A6 --delay 20
 
 [ "$fail" -eq 0 ] && echo "determinism: ok"
 exit "$fail"
