@@ -214,9 +214,7 @@ void run_delay(const DelayArgs& a) {
   options.max_followers = a.followers;
   options.check_followers = a.followers > 0;
   require_valid(options);
-  ProblemOptions whole = a.problem;
-  whole.from.clear();
-  const Problem p = load_problem(whole);
+  const Problem p = load_fleet_problem(a.problem, "--train-file");
   // The plan first: a bad file fails before any engine is built.
   recovery::Plan plan;
   std::vector<std::string> stops;
@@ -274,7 +272,7 @@ void run_delay(const DelayArgs& a) {
   std::FILE* out = report_stream(streams);
   print_report(out, r, a.full_report);
   nlohmann::json report = report_json(r, plan, a);
-  report["provenance"] = run_provenance(p, whole,
+  report["provenance"] = run_provenance(p, a.problem,
                                         {{"plan", a.reference ? "reference" : a.plan_file},
                                          {"train_number", a.train},
                                          {"station", a.station},

@@ -274,9 +274,7 @@ void run_montecarlo(const MonteCarloArgs& a) {
     bad("--adjusted-csv", "only with --adjust");
   }
   check_targets(a, a.adjust);
-  ProblemOptions whole = a.problem;
-  whole.from.clear();
-  const Problem p = load_problem(whole);
+  const Problem p = load_fleet_problem(a.problem, "--train-file");
   recovery::Plan plan;
   std::vector<std::string> stops;
   if (!a.reference) {

@@ -298,9 +298,7 @@ FleetSetup setup(const TimetableArgs& a) {
   check_service_args(a.service);
   if (!a.voltage_plot.empty() && s.model.model != timetable::EnergyModel::Network)
     bad("--voltage-plot", "--model network (only the network model has line voltages)");
-  ProblemOptions whole = a.problem;
-  whole.from.clear();
-  const Problem p = load_problem(whole);
+  const Problem p = load_fleet_problem(a.problem);
   s.model.traction_efficiency = p.train.traction_efficiency;
   const std::string from = a.problem.from.empty() ? p.line.stations.front().name : a.problem.from;
   const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;

@@ -109,6 +109,19 @@ void add_pass_through_option(CLI::App* cmd, ProblemOptions& o) {
                   "the run stops at every station between --from and --to)");
 }
 
+Problem load_fleet_problem(const ProblemOptions& o, const char* train_flag) {
+  ProblemOptions whole = o;
+  whole.from.clear();
+  Problem p = load_problem(whole);
+  if (p.train.has_efficiency_maps()) {
+    throw data::InputError("command line", 0, train_flag,
+                           "a train with constant efficiencies for the fleet models (they lay "
+                           "trips into power bins with one regeneration efficiency); got '" +
+                               p.train.name + "', whose efficiencies are maps");
+  }
+  return p;
+}
+
 std::vector<std::string> run_stops(const data::Line& line, const ProblemOptions& o) {
   const std::vector<std::string> all = data::stops_between(line, o.from, o.to);
   for (const auto& name : o.pass_through) {

@@ -43,6 +43,12 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
 // With from/to set, the route is the single leg from -> to and must not stop on the way: a run
 // over several stops is refused here (use run_stops and one route per leg).
 Problem load_problem(const ProblemOptions& o);
+// The whole line and the train for the many-train commands (timetable, delay, montecarlo):
+// load_problem without a route. Their fleet models lay trips into power bins with the train's
+// constant regeneration efficiency, so a train with efficiency maps is refused here (InputError
+// on train_flag, the flag that named the train file) rather than reported with the wrong
+// efficiency.
+Problem load_fleet_problem(const ProblemOptions& o, const char* train_flag = "--train");
 // The stops of the run from --from to --to: every station between them except the
 // --pass-through ones, both ends included, in the order of travel. InputError for a
 // --pass-through station that is not strictly between --from and --to.

@@ -4,7 +4,7 @@
 # changes no optimum at a fixed time; a train whose traction efficiency is a map solves, and its
 # traction input lies between the work divided by the map's best and worst efficiency; a
 # TTOBench train's "auxiliary power" is honoured; TTOBench cannot state a map, so exporting
-# such a train is refused; a bad map is exit 2 naming its field.
+# such a train is refused, and so are the fleet commands; a bad map is exit 2 naming its field.
 source "$(dirname "$0")/lib/common.sh" "$@"
 
 awk '/^\[davis\]/ && !done { print "auxiliary_power_kW = 150.0\n"; done = 1 } { print }' \
@@ -91,4 +91,9 @@ expect_error "are maps over speed and force" export --train capped.toml --ttoben
 sed 's/\[\[0.95, 0.95\], \[0.6, 0.6\]\]/[[0.95, 0.95], [0.6, 1.6]]/' map.toml > bad.toml
 expect_error "traction_efficiency_map.efficiency[2][2]" solve --from A6 --to A7 --time 110 \
   --train bad.toml --json bad.json
+# The fleet models use one regeneration efficiency: a train with maps is refused there.
+expect_error "whose efficiencies are maps" timetable evaluate --uniform --train map.toml \
+  --json fleet.json
+expect_error "field '--train-file'" delay --reference --train 3 --station A9 --delay 10 \
+  --train-file map.toml --json delay.json
 exit $fail
