@@ -276,7 +276,7 @@ class PartSolver {
       const double err = arrival_error_s(run);
       if (finite(err) && std::abs(err) < best_abs) {
         best_abs = std::abs(err);
-        best = {run, x, best_abs <= kArrivalTolerance_s};
+        best = {run, x, best_abs <= kMaxTrim_s};
       }
       if (finite(err) && err < 0.0 && x < floor_x) {
         floor_x = x;
@@ -389,6 +389,19 @@ class PartSolver {
             engine_, run, s_k, engine_.route().length_m(),
             [&](const physics::SimulationResult& sim) { return sim.running_time_s - target_s_; },
             kTrimTolerance_s);
+      }
+    }
+    if (binding_ >= 0 && ok) {
+      const PartPoint& p = points_[binding_];
+      const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_);
+      if (off > options_.time_tolerance_s) {
+        // Inside the window but not at the bound the unconstrained run missed: feasible, and
+        // possibly not the least energy (the prices could not be set closer on this grid).
+        notes_.push_back(format_text(
+            "the price search for %s ended %.2f s from its %s bound: every window can hold, but "
+            "the run may not be the least-energy one",
+            point_name(p.index, windows_[p.index]).c_str(), off,
+            bound_s_ == p.latest_s ? "latest" : "earliest"));
       }
     }
     *met = ok;
