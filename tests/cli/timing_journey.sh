@@ -70,6 +70,20 @@ assert w[2]["time_s"] <= 190.05, w[2]
 assert j["traction_energy_kJ"] > free["traction_energy_kJ"], (j["traction_energy_kJ"], free["traction_energy_kJ"])
 PY
 
+# The same bytes for any thread count (but the wall time and the thread count themselves).
+for n in 1 2; do
+  "$ecorail" solve --line track.data --train train.data --journey bind.json "${grid[@]}" --threads $n \
+    --json "bind_t$n.json" > /dev/null 2> err.txt || { echo "FAIL: --threads $n"; cat err.txt; fail=1; }
+done
+python3 - bind_t1.json bind_t2.json <<'PY' || fail=1
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+for d in (a, b):
+    for k in ("solve_wall_s", "threads"):
+        d.pop(k, None)
+assert a == b, [k for k in a if a[k] != b.get(k)]
+PY
+
 # A window below the flat-out time: refused naming it, nothing written.
 journey fast.json '[[0,0,0,0,0],[1500,0,20,null,null],[3000,150,190,0,0]]'
 expect_error "fast.json: field 'timing points.values[1]'" solve --line track.data --train train.data \

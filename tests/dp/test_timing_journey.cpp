@@ -189,6 +189,31 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
   EXPECT_LE(rest_traction, rest_opt * 1.01 + 1e4) << rest_traction << " vs " << rest_opt;
 }
 
+TEST(TimingJourney, ABindingEarliestWindowIsMet) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TimeSearchResult ref = plain(train, track, 240.0);
+  ASSERT_TRUE(ref.converged);
+  double t_free = 0.0;
+  for (const auto& p : ref.run.sim.trace) {
+    if (p.s_m >= 1500.0) {
+      t_free = p.t_s;
+      break;
+    }
+  }
+  const double earliest = std::ceil(t_free + 5.0);
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, earliest, 400),
+                                       stop_at(3000, 200, 240)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "early");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  EXPECT_NEAR(sol.windows[1].time_s, earliest, coarse().time_tolerance_s);
+  ASSERT_EQ(sol.windows[1].binds.size(), 1u);
+  EXPECT_EQ(sol.windows[1].binds[0], "earliest");
+  EXPECT_GT(sol.journey.sections[0].run.sim.energy.traction_work_J,
+            ref.run.sim.energy.traction_work_J);
+}
+
 TEST(TimingJourney, AWindowBelowTheFlatOutTimeIsRefusedNamingIt) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
