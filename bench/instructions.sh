@@ -7,7 +7,9 @@
 #
 # ECORAIL defaults to build/ecorail. CASE is any of: section (A6 -> A7 in 110 s), line (A1 ->
 # A14 in 1726 s with 30 s dwells), frontier (the frontier of A6 -> A7 at 1 s steps, 61 points,
-# not cached), frontiers (all 13 frontiers at 1 s steps, not cached; long under callgrind).
+# not cached), frontiers (all 13 frontiers at 1 s steps, not cached; long under callgrind),
+# long (TTOBench's 48.5 km reference track in 1500 s, passing S1 and S2; long under callgrind;
+# needs ../shared/data/ttobench beside the source tree, or TTOBENCH=DIR).
 # Default: section line frontier. Set WALL=0 to skip the wall times, CALLGRIND=0 to skip the
 # instruction counts, RUNS to change hyperfine's number of runs (default 5).
 set -euo pipefail
@@ -17,6 +19,7 @@ shift || true
 cases=("$@")
 [ ${#cases[@]} -gt 0 ] || cases=(section line frontier)
 runs=${RUNS:-5}
+ttobench=${TTOBENCH:-$(dirname "$0")/../../shared/data/ttobench}
 out_dir=$(mktemp -d)
 trap 'rm -rf "$out_dir"' EXIT
 
@@ -26,8 +29,13 @@ command_of() {
     line) echo "$bin solve --from A1 --to A14 --time 1726 --dwell 30 --threads 1 --quiet" ;;
     frontier) echo "$bin frontier --from A6 --to A7 --step 1 --no-cache --threads 1 --quiet" ;;
     frontiers) echo "$bin frontier --all --step 1 --no-cache --threads 1 --quiet" ;;
+    long)
+      echo "$bin solve --line $ttobench/tracks/00_reference.json --train" \
+        "$ttobench/trains/NL_Intercity_VIRM6.json --from S0 --to S3 --pass-through S1" \
+        "--pass-through S2 --time 1500 --threads 1 --quiet"
+      ;;
     *)
-      echo "unknown case '$1' (section, line, frontier, frontiers)" >&2
+      echo "unknown case '$1' (section, line, frontier, frontiers, long)" >&2
       exit 2
       ;;
   esac
