@@ -216,15 +216,9 @@ void run_delay(const DelayArgs& a) {
   require_valid(options);
   const Problem p = load_fleet_problem(a.problem, "--train-file");
   // The plan first: a bad file fails before any engine is built.
-  recovery::Plan plan;
-  std::vector<std::string> stops;
-  if (!a.reference) {
-    plan = read_plan(a.plan_file);
-    stops = plan.stations;
-    check_plan_stations(p.line, plan, a.plan_file);
-  } else {
-    stops = data::stops_between(p.line, p.line.stations.front().name, p.line.stations.back().name);
-  }
+  PlanStops ps = read_plan_stops(p.line, a.reference, a.plan_file);
+  recovery::Plan& plan = ps.plan;
+  const std::vector<std::string>& stops = ps.stops;
   const auto it = std::find(stops.begin(), stops.end(), a.station);
   if (it == stops.end())
     bad("--station", "a station of the plan (" + stops.front() + " .. " + stops.back() +
@@ -232,29 +226,14 @@ void run_delay(const DelayArgs& a) {
   const std::size_t station = static_cast<std::size_t>(it - stops.begin());
   if (station + 1 == stops.size())
     bad("--station", "a station the train departs from (not the last, " + stops.back() + ")");
-  dp::SectionLibraryOptions lib_options;
-  lib_options.engine = engine_options(a.problem);
-  lib_options.frontier_span_s = a.frontier_span_s;
-  require_valid(lib_options);
-  char key[200];
-  std::snprintf(key, sizeof key, "delay|%016llx|%016llx|%s",
-                static_cast<unsigned long long>(p.line.checksum()),
-                static_cast<unsigned long long>(data::train_checksum(p.train)),
-                a.problem.curve_resistance.c_str());
-  const dp::SectionLibrary library(p.train, data::build_routes(p.line, stops, p.train), lib_options,
-                                   key);
-  if (a.reference) {
-    dp::JourneyOptions journey;
-    journey.engine = lib_options.engine;
-    journey.measure_marginals = false;
-    plan = recovery::reference_plan(library, stops, journey);
-  }
+  const std::unique_ptr<dp::SectionLibrary> lib =
+      plan_library(p, a.problem, stops, a.frontier_span_s);
+  const dp::SectionLibrary& library = *lib;
+  if (a.reference) plan = reference_plan_on(library, stops);
   if (static_cast<std::size_t>(a.train) > plan.trains.size())
     bad("--train", "a train from 1 to " + std::to_string(plan.trains.size()) + "; got " +
                        std::to_string(a.train));
-  output::FileFrontierStore store(a.cache_dir.empty()
-                                      ? output::FileFrontierStore::default_directory()
-                                      : std::filesystem::path(a.cache_dir));
+  output::FileFrontierStore store(cache_directory(a.cache_dir));
   recovery::DelayRecoveryResult r;
   try {
     r = recovery::recover_delay(library, plan, static_cast<std::size_t>(a.train - 1), station,

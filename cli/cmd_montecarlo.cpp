@@ -275,39 +275,15 @@ void run_montecarlo(const MonteCarloArgs& a) {
   }
   check_targets(a, a.adjust);
   const Problem p = load_fleet_problem(a.problem, "--train-file");
-  recovery::Plan plan;
-  std::vector<std::string> stops;
-  if (!a.reference) {
-    plan = read_plan(a.plan_file);
-    stops = plan.stations;
-    check_plan_stations(p.line, plan, a.plan_file);
-  } else {
-    stops = data::stops_between(p.line, p.line.stations.front().name, p.line.stations.back().name);
-  }
-  dp::SectionLibraryOptions lib_options;
-  lib_options.engine = engine_options(a.problem);
-  lib_options.frontier_span_s = a.frontier_span_s;
-  require_valid(lib_options);
-  char key[200];
-  std::snprintf(key, sizeof key, "delay|%016llx|%016llx|%s",
-                static_cast<unsigned long long>(p.line.checksum()),
-                static_cast<unsigned long long>(data::train_checksum(p.train)),
-                a.problem.curve_resistance.c_str());
-  const dp::SectionLibrary library(p.train, data::build_routes(p.line, stops, p.train), lib_options,
-                                   key);
-  if (a.reference) {
-    dp::JourneyOptions journey;
-    journey.engine = lib_options.engine;
-    journey.measure_marginals = false;
-    plan = recovery::reference_plan(library, stops, journey);
-  }
-  output::FileFrontierStore store(a.cache_dir.empty()
-                                      ? output::FileFrontierStore::default_directory()
-                                      : std::filesystem::path(a.cache_dir));
-  output::FileSectionRunStore run_store((a.cache_dir.empty()
-                                             ? output::FileFrontierStore::default_directory()
-                                             : std::filesystem::path(a.cache_dir)) /
-                                        "section-runs");
+  PlanStops ps = read_plan_stops(p.line, a.reference, a.plan_file);
+  recovery::Plan& plan = ps.plan;
+  const std::vector<std::string>& stops = ps.stops;
+  const std::unique_ptr<dp::SectionLibrary> lib =
+      plan_library(p, a.problem, stops, a.frontier_span_s);
+  const dp::SectionLibrary& library = *lib;
+  if (a.reference) plan = reference_plan_on(library, stops);
+  output::FileFrontierStore store(cache_directory(a.cache_dir));
+  output::FileSectionRunStore run_store(cache_directory(a.cache_dir) / "section-runs");
   Progress progress("ecorail montecarlo", a.quiet);
   auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<recovery::SectionRuns> runs;

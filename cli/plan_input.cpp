@@ -3,9 +3,12 @@
 #include <cmath>
 #include <map>
 
+#include "cli/errors.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "output/frontier_cache.hpp"
 
 namespace ecorail::cli {
 
@@ -64,6 +67,47 @@ void check_plan_stations(const data::Line& line, const recovery::Plan& plan,
     throw data::InputError(file, 0, "station",
                            "every station of the line between " + stops.front() + " and " +
                                stops.back() + ", in the order of travel");
+}
+
+PlanStops read_plan_stops(const data::Line& line, bool reference, const std::string& plan_file) {
+  PlanStops out;
+  if (reference) {
+    out.stops = data::stops_between(line, line.stations.front().name, line.stations.back().name);
+    return out;
+  }
+  out.plan = read_plan(plan_file);
+  out.stops = out.plan.stations;
+  check_plan_stations(line, out.plan, plan_file);
+  return out;
+}
+
+std::unique_ptr<dp::SectionLibrary> plan_library(const Problem& p, const ProblemOptions& o,
+                                                 const std::vector<std::string>& stops,
+                                                 double frontier_span_s) {
+  dp::SectionLibraryOptions options;
+  options.engine = engine_options(o);
+  options.frontier_span_s = frontier_span_s;
+  require_valid(options);
+  char key[200];
+  std::snprintf(key, sizeof key, "delay|%016llx|%016llx|%s",
+                static_cast<unsigned long long>(p.line.checksum()),
+                static_cast<unsigned long long>(data::train_checksum(p.train)),
+                o.curve_resistance.c_str());
+  return std::make_unique<dp::SectionLibrary>(p.train, data::build_routes(p.line, stops, p.train),
+                                              options, key);
+}
+
+recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
+                                 const std::vector<std::string>& stops) {
+  dp::JourneyOptions journey;
+  journey.engine = library.options().engine;
+  journey.measure_marginals = false;
+  return recovery::reference_plan(library, stops, journey);
+}
+
+std::filesystem::path cache_directory(const std::string& cache_dir) {
+  return cache_dir.empty() ? output::FileFrontierStore::default_directory()
+                           : std::filesystem::path(cache_dir);
 }
 
 }  // namespace ecorail::cli

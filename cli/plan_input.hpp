@@ -5,10 +5,14 @@
 // field.
 #pragma once
 
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "cli/problem_options.hpp"
 #include "data/line.hpp"
+#include "dp/section_library.hpp"
 #include "recovery/plan.hpp"
 
 namespace ecorail::cli {
@@ -18,5 +22,26 @@ recovery::Plan read_plan(const std::string& file);
 // last, in the order of travel.
 void check_plan_stations(const data::Line& line, const recovery::Plan& plan,
                          const std::string& file);
+
+// What a delay command runs on: the plan and its stations. From plan_file (read and checked
+// against the line, so a bad file fails before any engine is built), or with reference the
+// line's stations, the plan itself made on the library afterwards (reference_plan_on).
+struct PlanStops {
+  recovery::Plan plan;
+  std::vector<std::string> stops;
+};
+PlanStops read_plan_stops(const data::Line& line, bool reference, const std::string& plan_file);
+
+// The section library of the plan's stations for the delay commands: the grid of the problem
+// options, frontiers frontier_span_s long, keyed for the frontier cache by line, train and
+// curve formula (the same key for `delay` and `montecarlo`, so they share cached frontiers).
+std::unique_ptr<dp::SectionLibrary> plan_library(const Problem& p, const ProblemOptions& o,
+                                                 const std::vector<std::string>& stops,
+                                                 double frontier_span_s);
+// The 2.1 reference plan made on that library (docs/delays.md).
+recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
+                                 const std::vector<std::string>& stops);
+// --cache-dir, or the frontier cache's default directory when it is empty.
+std::filesystem::path cache_directory(const std::string& cache_dir);
 
 }  // namespace ecorail::cli
