@@ -4,6 +4,7 @@
 #include <limits>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "dp/time_target.hpp"
 
@@ -205,48 +206,63 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   if (!shape) return report;
   report.dropped_phases = shape->dropped;
   Polisher polisher(engine, run.start, target_s, tolerance_s, report);
-  const std::size_t hold = shape->hold, exit = shape->exit;
-  const double c0 = shape->program[exit].from_m;
-  // The coasting point stays after the last hold starts and before the phase after it.
-  const double c_min =
-      std::max(c0 - options.search_half_width_m, shape->program[exit - 1].from_m + 1.0);
-  const double c_max = std::min(
-      c0 + options.search_half_width_m,
-      (exit + 1 < shape->program.size() ? shape->program[exit + 1].from_m : length_m) - 1.0);
-  if (!(c_min < c_max)) return report;
-  // The hold speed found for the last coasting point is where the next solve starts.
-  ControlProgram current = shape->program;
-  auto cost_at = [&](double c) {
-    ControlProgram p = current;
-    p[exit].from_m = c;
-    Candidate cand = polisher.meet_time(std::move(p), hold, options.search_step_m);
-    if (cand.program.empty()) return kInf;
-    current[hold].from_m = cand.program[hold].from_m;
-    return cand.cost_J;
-  };
-  // Golden section on the coasting point (the energy along the time constraint is unimodal
-  // around the optimum; an infeasible point scores +inf and moves the bracket away from it).
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = c_min, b = c_max;
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = cost_at(x1), f2 = cost_at(x2);
-  while (b - a > options.search_tolerance_m) {
-    if (f1 <= f2) {
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - g * (b - a);
-      f1 = cost_at(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + g * (b - a);
-      f2 = cost_at(x2);
+  const std::size_t hold = shape->hold;
+  // Every coast that leaves a hold (the last one, and any before a descent) is searched in
+  // turn, the others held where they are.
+  std::vector<std::size_t> exits;
+  for (std::size_t k = hold + 1; k < shape->program.size(); ++k) {
+    if (shape->program[k].control == Control::Coast &&
+        shape->program[k - 1].control == Control::Hold) {
+      exits.push_back(k);
     }
   }
-  const double c_best = f1 <= f2 ? x1 : x2;
-  if (!std::isfinite(std::min(f1, f2))) return report;
+  const double c0 = shape->program[shape->exit].from_m;
+  // The hold speed found for the last coasting point is where the next solve starts.
+  ControlProgram current = shape->program;
+  double best_cost = kInf;
+  for (const std::size_t exit : exits) {
+    // The coasting point stays after its hold starts and before the phase after it.
+    const double c_start = current[exit].from_m;
+    const double c_min =
+        std::max(c_start - options.search_half_width_m, current[exit - 1].from_m + 1.0);
+    const double c_max =
+        std::min(c_start + options.search_half_width_m,
+                 (exit + 1 < current.size() ? current[exit + 1].from_m : length_m) - 1.0);
+    if (!(c_min < c_max)) continue;
+    auto cost_at = [&](double c) {
+      ControlProgram p = current;
+      p[exit].from_m = c;
+      Candidate cand = polisher.meet_time(std::move(p), hold, options.search_step_m);
+      if (cand.program.empty()) return kInf;
+      current[hold].from_m = cand.program[hold].from_m;
+      return cand.cost_J;
+    };
+    // Golden section on the coasting point (the energy along the time constraint is unimodal
+    // around the optimum; an infeasible point scores +inf and moves the bracket away from it).
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double a = c_min, b = c_max;
+    double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    double f1 = cost_at(x1), f2 = cost_at(x2);
+    while (b - a > options.search_tolerance_m) {
+      if (f1 <= f2) {
+        b = x2, x2 = x1, f2 = f1;
+        x1 = b - g * (b - a);
+        f1 = cost_at(x1);
+      } else {
+        a = x1, x1 = x2, f1 = f2;
+        x2 = a + g * (b - a);
+        f2 = cost_at(x2);
+      }
+    }
+    const double f_best = std::min(f1, f2);
+    if (!std::isfinite(f_best)) continue;
+    current[exit].from_m = f1 <= f2 ? x1 : x2;
+    best_cost = f_best;
+  }
+  if (!std::isfinite(best_cost)) return report;
+  const double c_best = current[shape->exit].from_m;
   // The result: the best coasting point at the engine's fine step, the time met there.
-  ControlProgram p = current;
-  p[exit].from_m = c_best;
-  Candidate fine = polisher.meet_time(std::move(p), hold, engine.options().resim_step_m);
+  Candidate fine = polisher.meet_time(current, hold, engine.options().resim_step_m);
   if (fine.program.empty() || !run_arrives(fine.sim) ||
       std::abs(fine.sim.running_time_s - target_s) > tolerance_s || !(fine.cost_J < run.cost_J)) {
     return report;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace ecorail::dp {
@@ -22,9 +23,8 @@ struct Scorer {
     const int next = grid.next_stage_after(s);
     const physics::Advance adv = motion.advance(s, e, grid.position(next), c, step);
     if (adv.stalled) return kInfeasible;
-    const double energy =
-        energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
-                      adv.traction_input_J, adv.regen_J);
+    const double energy = energy_cost_J(objective, motion.train(), adv.traction_work_J,
+                                        adv.brake_work_J, adv.traction_input_J, adv.regen_J);
     return energy + value.price(next - 1) * adv.time_s +
            value.at(grid, next, physics::speed_from_e(adv.e_end));
   }
@@ -181,6 +181,70 @@ physics::ControlProgram hold_cruising(const physics::ControlProgram& program,
     i = j + 1;
   }
   return simplify_program(out, 0.0);
+}
+
+namespace {
+// Index of the program entry in force at s.
+std::size_t entry_at(const physics::ControlProgram& program, double s) {
+  std::size_t k = 0;
+  while (k + 1 < program.size() && program[k + 1].from_m <= s) ++k;
+  return k;
+}
+// Braking below the limit: more than this under the envelope's speed counts as the hold's.
+constexpr double kBelowLimit_ms = 0.2;
+}  // namespace
+
+physics::ControlProgram coast_instead_of_braking_holds(
+    const physics::ControlProgram& program, physics::SimulationResult& sim,
+    const physics::SpeedEnvelope& envelope,
+    const std::function<physics::SimulationResult(const physics::ControlProgram&)>& simulate,
+    int max_rounds) {
+  physics::ControlProgram out = program;
+  for (int round = 0; round < max_rounds; ++round) {
+    // The first trace point where a hold brakes below the limit.
+    const auto& trace = sim.trace;
+    std::size_t hit = trace.size();
+    for (std::size_t k = 1; k < trace.size(); ++k) {
+      const physics::TracePoint& p = trace[k];
+      if (p.regime != physics::Regime::PartialBrake) continue;
+      if (out[entry_at(out, trace[k - 1].s_m)].control != Control::Hold) continue;
+      const double limit = physics::speed_from_e(envelope.e_at(p.s_m));
+      if (p.v_ms < limit - kBelowLimit_ms) {
+        hit = k;
+        break;
+      }
+    }
+    if (hit == trace.size()) break;
+    const double x_brake = trace[hit - 1].s_m, v_hold = trace[hit - 1].v_ms;
+    const std::size_t k_hold = entry_at(out, x_brake);
+    const double next_m =
+        k_hold + 1 < out.size() ? out[k_hold + 1].from_m : std::numeric_limits<double>::infinity();
+    // Coast from where the hold starts braking ...
+    physics::ControlProgram trial = out;
+    trial.insert(trial.begin() + static_cast<long>(k_hold) + 1, {x_brake, Control::Coast});
+    if (trial[k_hold].from_m >= x_brake) trial.erase(trial.begin() + static_cast<long>(k_hold));
+    physics::SimulationResult coasting = simulate(trial);
+    // ... and hold again where the speed is back down to the hold's (if it is before the
+    // next entry).
+    double x_back = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = 1; k < coasting.trace.size(); ++k) {
+      const physics::TracePoint& p = coasting.trace[k];
+      if (p.s_m <= x_brake + 1.0) continue;
+      if (p.s_m >= next_m) break;
+      if (p.v_ms <= v_hold) {
+        x_back = p.s_m;
+        break;
+      }
+    }
+    if (!std::isnan(x_back)) {
+      const std::size_t k_coast = entry_at(trial, x_brake);
+      trial.insert(trial.begin() + static_cast<long>(k_coast) + 1, {x_back, Control::Hold});
+      coasting = simulate(trial);
+    }
+    out = simplify_program(trial, 0.0);
+    sim = std::move(coasting);
+  }
+  return out;
 }
 
 physics::ControlProgram merge_short_entries(const physics::ControlProgram& program,

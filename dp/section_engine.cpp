@@ -208,6 +208,10 @@ LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& 
       out.program = std::move(held);
       out.sim = simulate(out.program, start, resim_step_m);
     }
+    // A hold that would brake below the limit (a descent) coasts instead.
+    out.program = coast_instead_of_braking_holds(
+        out.program, out.sim, envelope_,
+        [&](const physics::ControlProgram& p) { return simulate(p, start, resim_step_m); });
   }
   out.cost_J = energy_cost_J(out.sim);
   return out;

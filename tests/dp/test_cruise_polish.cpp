@@ -89,6 +89,38 @@ TEST(CruisePolish, LongLevelRunIsOneHoldAndAsCheapAsTheStrategyOptimum) {
   EXPECT_GE(e, independent_J * (1.0 - 1e-4));
 }
 
+// A cruise over a steep descent: holding the cruise speed there would brake all the way down
+// (gravity outweighs the resistance); the run must coast instead and cost no more than the
+// grid's own run (which coasts down the hill) beyond 0.05 %. Holding by braking cost 12 % more
+// on TTOBench's 00_var_gradient_minus_10 before holds learnt to coast.
+TEST(CruisePolish, ADescentIsCoastedNotBrakedThrough) {
+  std::vector<physics::RouteSegment> segs(3);
+  const double ends[] = {4000.0, 7000.0, 12000.0}, grades[] = {0.0, -20.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = i == 0 ? 0.0 : ends[i - 1];
+    segs[i].end_m = ends[i];
+    segs[i].gradient_permille = grades[i];
+    segs[i].speed_limit_ms = units::kmh_to_ms(80.0);
+  }
+  const physics::Route route(segs, 0.0, 1, "D0", "D1");
+  const physics::Train train = data::default_train();
+  const dp::SectionEngine held(train, route, coarse(true));
+  const dp::SectionEngine grid(train, route, coarse(false));
+  const double target_s = held.min_time_run().running_time_s * 1.12;
+  const dp::TimeSearchResult h = dp::solve_for_time(held, target_s, {});
+  const dp::TimeSearchResult g = dp::solve_for_time(grid, target_s, {});
+  ASSERT_TRUE(h.converged && g.converged);
+  EXPECT_NEAR(h.run.sim.running_time_s, target_s, 1e-3);
+  const double e_h = h.run.sim.energy.traction_work_J, e_g = g.run.sim.energy.traction_work_J;
+  EXPECT_LE(e_h, e_g * (1.0 + 5e-4)) << e_h << " J held against " << e_g << " J grid";
+  // No hold brakes below the limit anywhere on the held run.
+  for (std::size_t k = 1; k < h.run.sim.trace.size(); ++k) {
+    const physics::TracePoint& p = h.run.sim.trace[k];
+    if (p.regime != physics::Regime::PartialBrake) continue;
+    EXPECT_GE(p.v_ms, physics::speed_from_e(held.envelope().e_at(p.s_m)) - 0.2) << p.s_m;
+  }
+}
+
 TEST(CruisePolish, ShortCruisesAndDisabledPolishAreLeftAlone) {
   const physics::Train train = data::default_train();
   const physics::Route route = long_level_route();
