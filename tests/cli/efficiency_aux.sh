@@ -6,6 +6,7 @@
 # TTOBench train's "auxiliary power" is honoured; TTOBench cannot state a map, so exporting
 # such a train is refused, and so are the fleet commands; a bad map is exit 2 naming its field.
 source "$(dirname "$0")/lib/common.sh" "$@"
+source "$src/tests/cli/lib/ttobench_fixtures.sh"
 
 awk '/^\[davis\]/ && !done { print "auxiliary_power_kW = 150.0\n"; done = 1 } { print }' \
   "$src/data/contest/train.toml" > aux.toml
@@ -40,23 +41,8 @@ assert w / 0.95 < e < w / 0.6, (w, e)
 PY
 
 # TTOBench: a train's auxiliary power is read (it used to be refused).
-cat > track.data <<'JSON'
-{"metadata": {"id": "flat_2km", "library version": "TTOBench v1.4"},
- "stops": {"unit": "m", "values": [0, 2000]},
- "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 60]]},
- "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
-JSON
-cat > train.data <<'JSON'
-{"metadata": {"id": "hand_train", "library version": "TTOBench v1.4"},
- "mass": {"unit": "t", "value": 200}, "rho": {"unit": "%", "value": 5},
- "max traction power": {"unit": "kW", "value": 2000}, "max reg braking power": {"unit": "kW", "value": 2000},
- "max traction force": {"unit": "kN", "value": 200}, "max reg braking force": {"unit": "kN", "value": 150},
- "max speed": {"unit": "km/h", "value": 100},
- "rolling resistance r0": {"unit": "kN", "value": 2}, "rolling resistance r1": {"unit": "kN/(km/h)", "value": 0.02},
- "rolling resistance r2": {"unit": "kN/(km/h)^2", "value": 0.0005},
- "efficiency traction": {"unit": "%", "value": 90}, "efficiency reg brake": {"unit": "%", "value": 80},
- "auxiliary power": {"unit": "kW", "value": 80}}
-JSON
+flat_track track.data flat_2km "[0, 2000]" 60
+hand_train train.data ', "auxiliary power": {"unit": "kW", "value": 80}'
 "$ecorail" min-time --line track.data --train train.data --from S0 --to S1 --json t.json \
   > /dev/null || { echo "FAIL: TTOBench train with auxiliary power"; fail=1; }
 python3 -c "

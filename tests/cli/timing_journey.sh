@@ -5,23 +5,10 @@
 # with --from/--to/--time; malformed journeys name their JSON path.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
+source "$src/tests/cli/lib/ttobench_fixtures.sh"
 
-cat > track.data <<'JSON'
-{"metadata": {"id": "flat_3km", "library version": "TTOBench v1.4"},
- "stops": {"unit": "m", "values": [0, 3000]},
- "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 80]]},
- "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
-JSON
-cat > train.data <<'JSON'
-{"metadata": {"id": "hand_train", "library version": "TTOBench v1.4"},
- "mass": {"unit": "t", "value": 200}, "rho": {"unit": "%", "value": 5},
- "max traction power": {"unit": "kW", "value": 2000}, "max reg braking power": {"unit": "kW", "value": 2000},
- "max traction force": {"unit": "kN", "value": 200}, "max reg braking force": {"unit": "kN", "value": 150},
- "max pn braking force": {"unit": "kN", "value": 50}, "max speed": {"unit": "km/h", "value": 100},
- "rolling resistance r0": {"unit": "kN", "value": 2}, "rolling resistance r1": {"unit": "kN/(km/h)", "value": 0.02},
- "rolling resistance r2": {"unit": "kN/(km/h)^2", "value": 0.0005},
- "efficiency traction": {"unit": "%", "value": 90}, "efficiency reg brake": {"unit": "%", "value": 80}}
-JSON
+flat_track track.data flat_3km "[0, 3000]" 80
+hand_train train.data
 journey() {  # journey FILE VALUES: a journey file with the given timing points
   cat > "$1" <<JSON
 {"metadata": {"id": "flat_3km_J", "library version": "TTOBench v1.5", "associated track": "flat_3km"},

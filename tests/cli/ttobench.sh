@@ -4,23 +4,10 @@
 # and the file and JSON path named.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
+source "$src/tests/cli/lib/ttobench_fixtures.sh"
 
-cat > track.data <<'JSON'
-{"metadata": {"id": "flat_2km", "library version": "TTOBench v1.4"},
- "stops": {"unit": "m", "values": [0, 1000, 2000]},
- "speed limits": {"units": {"position": "m", "velocity": "km/h"}, "values": [[0, 60]]},
- "gradients": {"units": {"position": "m", "slope": "permil"}, "values": [[0, 0]]}}
-JSON
-cat > train.data <<'JSON'
-{"metadata": {"id": "hand_train", "library version": "TTOBench v1.4"},
- "mass": {"unit": "t", "value": 200}, "rho": {"unit": "%", "value": 5},
- "max traction power": {"unit": "kW", "value": 2000}, "max reg braking power": {"unit": "kW", "value": 2000},
- "max traction force": {"unit": "kN", "value": 200}, "max reg braking force": {"unit": "kN", "value": 150},
- "max pn braking force": {"unit": "kN", "value": 50}, "max speed": {"unit": "km/h", "value": 100},
- "rolling resistance r0": {"unit": "kN", "value": 2}, "rolling resistance r1": {"unit": "kN/(km/h)", "value": 0.02},
- "rolling resistance r2": {"unit": "kN/(km/h)^2", "value": 0.0005},
- "efficiency traction": {"unit": "%", "value": 90}, "efficiency reg brake": {"unit": "%", "value": 80}}
-JSON
+flat_track track.data flat_2km "[0, 1000, 2000]" 60
+hand_train train.data
 
 # Min-time between named stops; both legs of the flat, level track take the same time.
 "$ecorail" min-time --line track.data --train train.data --from S0 --to S1 --json a.json > /dev/null 2> err.txt ||
