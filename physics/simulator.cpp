@@ -85,7 +85,7 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
       if (capped) out.cap_binding_m += sub.length_m;
     }
     if (sub.stopped) {
-      out.stopped_early = s < length - 1e-3;
+      out.stopped_early = s < length - kArrivalSlack_m;
       break;
     }
   }
