@@ -288,11 +288,7 @@ void add_delay_command(CLI::App& app) {
   auto args = std::make_shared<DelayArgs>();
   CLI::App* cmd = app.add_subcommand(
       "delay", "recover a late departure: back on time first, then least energy");
-  cmd->add_option("--plan", args->plan_file,
-                  "timetable CSV as `ecorail timetable evaluate|optimise --csv` writes it");
-  cmd->add_flag("--reference", args->reference,
-                "the 2.1 plan: 30 s dwells, optimal split of 1726 s, 100 trains uniform over "
-                "63900 s");
+  add_plan_source_options(cmd, args->plan_file, args->reference);
   cmd->add_option("--train", args->train, "the late train (1-based, in departure order)")
       ->required();
   cmd->add_option("--station", args->station, "the station it leaves late")->required();
@@ -302,18 +298,8 @@ void add_delay_command(CLI::App& app) {
   cmd->add_option("--followers", args->followers,
                   "followers checked for separation at most (0: none)")
       ->capture_default_str();
-  cmd->add_option("--frontier-span", args->frontier_span_s,
-                  "each section's frontier covers [T_min, T_min + span] (s)")
-      ->capture_default_str();
-  cmd->add_option("--line", args->problem.line_path, "line (default: the embedded reference line)");
-  cmd->add_option("--train-file", args->problem.train_path,
-                  "train TOML or TTOBench JSON (default: the reference train)");
-  cmd->add_option("--ds", args->problem.ds_m, "grid position step in m")->capture_default_str();
-  cmd->add_option("--dv", args->problem.dv_kmh, "grid speed step in km/h")->capture_default_str();
-  cmd->add_option("--threads", args->problem.threads, "OpenMP threads (default: all cores)");
-  cmd->add_option("--cache-dir", args->cache_dir,
-                  "frontier cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
-  cmd->add_flag("--no-cache", args->no_cache, "compute every frontier afresh");
+  add_plan_engine_options(cmd, args->problem, args->frontier_span_s, args->cache_dir,
+                          args->no_cache);
   cmd->add_flag("--full-report", args->full_report, "print the full report");
   cmd->add_option("--json", args->json, "write the recovery as JSON ('-': standard output)");
   cmd->add_option("--csv", args->csv, "write the recovery sections as CSV ('-': standard output)");

@@ -416,11 +416,7 @@ void add_montecarlo_command(CLI::App& app) {
   auto args = std::make_shared<MonteCarloArgs>();
   CLI::App* cmd = app.add_subcommand(
       "montecarlo", "service days under random delays: punctuality, lateness, energy (3.2)");
-  cmd->add_option("--plan", args->plan_file,
-                  "timetable CSV as `ecorail timetable evaluate|optimise --csv` writes it");
-  cmd->add_flag("--reference", args->reference,
-                "the 2.1 plan: 30 s dwells, optimal split of 1726 s, 100 trains uniform over "
-                "63900 s");
+  add_plan_source_options(cmd, args->plan_file, args->reference);
   cmd->add_option("--days", args->days, "simulated days")->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the delay draws")->capture_default_str();
   cmd->add_option("--recovery", args->recovery,
@@ -453,9 +449,6 @@ void add_montecarlo_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step", args->step_s, "power-flow time step (s, divides 1 s)")
       ->capture_default_str();
-  cmd->add_option("--frontier-span", args->frontier_span_s,
-                  "each section's frontier covers [T_min, T_min + span] (s)")
-      ->capture_default_str();
   cmd->add_option("--shard", args->shard, "simulate slice i of N of the days (i/N)");
   cmd->add_flag("--adjust", args->adjust,
                 "search the plan family for the least substation energy at the punctuality "
@@ -471,15 +464,8 @@ void add_montecarlo_command(CLI::App& app) {
   cmd->add_option("--extra-dwells", args->extra_dwells, "extra dwells searched by --adjust (s)")
       ->capture_default_str();
   cmd->add_option("--adjusted-csv", args->adjusted_csv, "write the adjusted plan (timetable CSV)");
-  cmd->add_option("--line", args->problem.line_path, "line (default: the embedded reference line)");
-  cmd->add_option("--train-file", args->problem.train_path,
-                  "train TOML or TTOBench JSON (default: the reference train)");
-  cmd->add_option("--ds", args->problem.ds_m, "grid position step in m")->capture_default_str();
-  cmd->add_option("--dv", args->problem.dv_kmh, "grid speed step in km/h")->capture_default_str();
-  cmd->add_option("--threads", args->problem.threads, "OpenMP threads (default: all cores)");
-  cmd->add_option("--cache-dir", args->cache_dir,
-                  "frontier cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
-  cmd->add_flag("--no-cache", args->no_cache, "compute every frontier afresh");
+  add_plan_engine_options(cmd, args->problem, args->frontier_span_s, args->cache_dir,
+                          args->no_cache);
   cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->add_flag("--full-report", args->full_report, "print the full report");
   cmd->add_option("--json", args->json, "write the statistics and every day's record (JSON)");

@@ -110,4 +110,28 @@ std::filesystem::path cache_directory(const std::string& cache_dir) {
                            : std::filesystem::path(cache_dir);
 }
 
+void add_plan_source_options(CLI::App* cmd, std::string& plan_file, bool& reference) {
+  cmd->add_option("--plan", plan_file,
+                  "timetable CSV as `ecorail timetable evaluate|optimise --csv` writes it");
+  cmd->add_flag("--reference", reference,
+                "the 2.1 plan: 30 s dwells, optimal split of 1726 s, 100 trains uniform over "
+                "63900 s");
+}
+
+void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& frontier_span_s,
+                             std::string& cache_dir, bool& no_cache) {
+  cmd->add_option("--frontier-span", frontier_span_s,
+                  "each section's frontier covers [T_min, T_min + span] (s)")
+      ->capture_default_str();
+  cmd->add_option("--line", problem.line_path, "line (default: the embedded reference line)");
+  cmd->add_option("--train-file", problem.train_path,
+                  "train TOML or TTOBench JSON (default: the reference train)");
+  cmd->add_option("--ds", problem.ds_m, "grid position step in m")->capture_default_str();
+  cmd->add_option("--dv", problem.dv_kmh, "grid speed step in km/h")->capture_default_str();
+  cmd->add_option("--threads", problem.threads, "OpenMP threads (default: all cores)");
+  cmd->add_option("--cache-dir", cache_dir,
+                  "frontier cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
+  cmd->add_flag("--no-cache", no_cache, "compute every frontier afresh");
+}
+
 }  // namespace ecorail::cli

@@ -5,6 +5,7 @@
 // field.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -41,6 +42,12 @@ std::unique_ptr<dp::SectionLibrary> plan_library(const Problem& p, const Problem
 // The 2.1 reference plan made on that library (docs/delays.md).
 recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
                                  const std::vector<std::string>& stops);
+// The flags the delay commands share: --plan / --reference (where the plan comes from), and the
+// line, train file, grid, threads, frontier span and frontier cache (--frontier-span, --line,
+// --train-file, --ds, --dv, --threads, --cache-dir, --no-cache).
+void add_plan_source_options(CLI::App* cmd, std::string& plan_file, bool& reference);
+void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& frontier_span_s,
+                             std::string& cache_dir, bool& no_cache);
 // --cache-dir, or the frontier cache's default directory when it is empty.
 std::filesystem::path cache_directory(const std::string& cache_dir);
 
