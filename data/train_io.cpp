@@ -257,22 +257,23 @@ physics::EfficiencyMap read_efficiency_map(const toml::table& root, const std::s
   }
   const toml::table& t = *node->as_table();
   toml_util::check_keys(t, {"speeds_kmh", "forces_kN", "efficiency"}, file, 0, name + ".");
-  auto axis = [&](const char* key, double scale) {
+  // The conversions the writer inverts (speed_to_ms, kN_to_N), so a map reads back exactly.
+  auto axis = [&](const char* key, double (*to_si)(double)) {
     const toml::array* a = t.get(key) ? t.get(key)->as_array() : nullptr;
     if (a == nullptr || a->size() < 2) fail(key, "an array of at least two ascending numbers");
     std::vector<double> out;
     for (std::size_t i = 0; i < a->size(); ++i) {
       const std::string where = std::string(key) + "[" + std::to_string(i + 1) + "]";
       const double x = toml_util::number(a->get(i), file, 0, name + "." + where);
-      if (!(x >= 0.0) || (!out.empty() && !(x * scale > out.back()))) {
+      if (!(x >= 0.0) || (!out.empty() && !(to_si(x) > out.back()))) {
         fail(where, "ascending numbers from 0 up; got " + format_number(x));
       }
-      out.push_back(x * scale);
+      out.push_back(to_si(x));
     }
     return out;
   };
-  map.speeds_ms = axis("speeds_kmh", units::kmh_to_ms(1.0));
-  map.forces_N = axis("forces_kN", 1000.0);
+  map.speeds_ms = axis("speeds_kmh", speed_to_ms);
+  map.forces_N = axis("forces_kN", kN_to_N);
   const toml::array* rows = t.get("efficiency") ? t.get("efficiency")->as_array() : nullptr;
   if (rows == nullptr || rows->size() != map.speeds_ms.size()) {
     fail("efficiency", "one row per speed (" + std::to_string(map.speeds_ms.size()) + " rows)");
