@@ -50,7 +50,15 @@ void Progress::update(const char* stage, int done, int total) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
   const bool last = total > 0 && done >= total;
-  if (!last && std::chrono::duration<double>(now - last_draw_).count() < kRedrawEvery_s) return;
+  // The first finished step of a count is drawn whatever the clock says: it is the first line
+  // with a time-left estimate, and a ladder of two layers would otherwise show none between
+  // its start and its end.
+  const bool first_step = total > 1 && done == 1 && !first_step_drawn_;
+  if (!last && !first_step &&
+      std::chrono::duration<double>(now - last_draw_).count() < kRedrawEvery_s) {
+    return;
+  }
+  first_step_drawn_ = first_step_drawn_ || first_step;
   last_draw_ = now;
   const std::string text =
       line(label_, stage, done, total, std::chrono::duration<double>(now - start_).count());

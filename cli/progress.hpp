@@ -40,6 +40,7 @@ class Progress {
   bool enabled_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   std::size_t drawn_width_ = 0;
+  bool first_step_drawn_ = false;  // the first finished step of a count is always drawn
   std::mutex mutex_;
 };
 
