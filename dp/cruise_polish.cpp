@@ -116,7 +116,10 @@ class Polisher {
       program[hold].from_m = x;
       Candidate c;
       c.program = program;
-      c.sim = engine_.simulate(program, start_, step_m);
+      // Consecutive runs differ from the hold's start on (the earlier of the two starts), so
+      // each resumes, bit for bit, from the run before it.
+      c.sim = engine_.resimulate(program, start_, step_m, recent_);
+      recent_ = c.sim;
       ++report_.simulations;
       // A run that does not arrive counts as too slow: the hold must start later.
       const double f = run_arrives(c.sim) ? c.sim.running_time_s - target_s_ : kInf;
@@ -188,6 +191,7 @@ class Polisher {
   StartState start_;
   double target_s_, tolerance_s_;
   CruisePolishReport& report_;
+  physics::SimulationResult recent_;  // the last run (empty: none yet)
 };
 
 }  // namespace

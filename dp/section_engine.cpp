@@ -98,6 +98,22 @@ physics::SimulationResult SectionEngine::simulate(const physics::ControlProgram&
   return physics::simulate(motion_, program, opt);
 }
 
+physics::SimulationResult SectionEngine::resimulate(
+    const physics::ControlProgram& program, const StartState& start,
+    const physics::SimulationResult& earlier) const {
+  return resimulate(program, start, options_.resim_step_m, earlier);
+}
+
+physics::SimulationResult SectionEngine::resimulate(
+    const physics::ControlProgram& program, const StartState& start, double step_m,
+    const physics::SimulationResult& earlier) const {
+  physics::SimulationOptions opt;
+  opt.step_m = step_m;
+  opt.start_position_m = start.position_m;
+  opt.start_speed_ms = start.speed_ms;
+  return physics::simulate(motion_, program, opt, earlier);
+}
+
 double SectionEngine::energy_cost_J(const physics::SimulationResult& sim) const {
   return dp::energy_cost_J(options_.objective, train_, sim.energy.traction_work_J,
                            sim.energy.brake_work_J, sim.energy.traction_input_J,
@@ -196,7 +212,18 @@ LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& 
   out.lambda = lambda;
   out.start = start;
   out.program = extract_program(motion_, grid_, value, options_.objective, settings);
-  out.sim = simulate(out.program, start, resim_step_m);
+  std::shared_ptr<const physics::SimulationResult> base;
+  {
+    const std::lock_guard<std::mutex> lock(resume_mutex_);
+    base = resume_base_;
+  }
+  out.sim = base ? resimulate(out.program, start, resim_step_m, *base)
+                 : simulate(out.program, start, resim_step_m);
+  if (!out.sim.checkpoints.empty()) {
+    auto kept = std::make_shared<const physics::SimulationResult>(out.sim);
+    const std::lock_guard<std::mutex> lock(resume_mutex_);
+    resume_base_ = std::move(kept);
+  }
   if (options_.cruise_as_hold) {
     // A stage-priced run cruises at a different speed on each side of a price change, so its
     // cruises are held stretch by stretch.
@@ -205,13 +232,24 @@ LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& 
             ? hold_cruising(out.program, out.sim)
             : hold_cruising_by_stretch(out.program, out.sim, price_changes_m(grid_, value));
     if (held.size() != out.program.size()) {
+      // The held program equals the extracted one up to its first held cruise: resumed.
+      out.sim = resimulate(held, start, resim_step_m, out.sim);
       out.program = std::move(held);
-      out.sim = simulate(out.program, start, resim_step_m);
     }
-    // A hold that would brake below the limit (a descent) coasts instead.
+    // A hold that would brake below the limit (a descent) coasts instead. Each trial differs
+    // from the run before it only from its new coast on, so it resumes from that run.
+    // (The first trial resumes from the run as extracted, unchanged until it returns.)
+    const physics::SimulationResult& extracted_sim = out.sim;
+    bool first_trial = true;
+    physics::SimulationResult last_sim;
     out.program = coast_instead_of_braking_holds(
-        out.program, out.sim, envelope_,
-        [&](const physics::ControlProgram& p) { return simulate(p, start, resim_step_m); });
+        out.program, out.sim, envelope_, [&](const physics::ControlProgram& p) {
+          physics::SimulationResult sim =
+              resimulate(p, start, resim_step_m, first_trial ? extracted_sim : last_sim);
+          first_trial = false;
+          last_sim = sim;
+          return sim;
+        });
   }
   out.cost_J = energy_cost_J(out.sim);
   return out;

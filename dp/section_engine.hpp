@@ -90,6 +90,17 @@ class SectionEngine {
                                      const StartState& start = {}) const;
   physics::SimulationResult simulate(const physics::ControlProgram& program,
                                      const StartState& start, double step_m) const;
+  // The run of `program` at the engine's re-simulation step, resumed from `earlier`, a run of
+  // another program from the same start at the same step: bit for bit simulate(program,
+  // start), without re-integrating the steps before the programs' first difference (see
+  // physics::simulate with an earlier run; a full run when there is nothing to reuse).
+  physics::SimulationResult resimulate(const physics::ControlProgram& program,
+                                       const StartState& start,
+                                       const physics::SimulationResult& earlier) const;
+  // The same at another step (a full run unless `earlier` was made at that step).
+  physics::SimulationResult resimulate(const physics::ControlProgram& program,
+                                       const StartState& start, double step_m,
+                                       const physics::SimulationResult& earlier) const;
   double energy_cost_J(const physics::SimulationResult& sim) const;
 
   const physics::Train& train() const { return train_; }
@@ -117,6 +128,11 @@ class SectionEngine {
   mutable std::once_flag table_once_;
   mutable std::once_flag flat_out_once_;
   mutable physics::SimulationResult flat_out_;
+  // The last extracted program's run (run_from): the next one resumes from it up to where the
+  // two programs first differ (close prices extract programs that agree over a prefix, often
+  // the whole traction phase). The result does not depend on which run it resumes from.
+  mutable std::mutex resume_mutex_;
+  mutable std::shared_ptr<const physics::SimulationResult> resume_base_;
 };
 
 }  // namespace ecorail::dp

@@ -253,6 +253,19 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     double slope;  // d(time)/d(position), negative: later switch, faster run
   };
   std::vector<Candidate> candidates;
+  // Every probe and trial moves one switch of `program`: it is the base run up to the switch's
+  // smaller position, so it is resumed (bit for bit) from whichever earlier run, the base or
+  // the trial before it, agrees with it further.
+  physics::SimulationResult recent_sim;
+  auto resimulate = [&](const physics::ControlProgram& trial) {
+    const bool recent_closer = !recent_sim.checkpoints.empty() &&
+                               physics::first_difference_m(trial, recent_sim.checkpoint_program) >
+                                   physics::first_difference_m(trial, run.sim.checkpoint_program);
+    physics::SimulationResult sim =
+        engine.resimulate(trial, run.start, recent_closer ? recent_sim : run.sim);
+    recent_sim = sim;
+    return sim;
+  };
   constexpr double kProbe_m = 0.5;
   for (std::size_t k = 1; k < program.size(); ++k) {
     if (program[k - 1].control != physics::Control::MaxTraction) continue;
@@ -260,7 +273,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     if (program[k].from_m + kProbe_m >= hi) continue;
     physics::ControlProgram probe = program;
     probe[k].from_m += kProbe_m;
-    const double slope = (error(engine.simulate(probe, run.start)) - error(run.sim)) / kProbe_m;
+    const double slope = (error(resimulate(probe)) - error(run.sim)) / kProbe_m;
     ++result.trim_iterations;
     if (slope < 0.0) candidates.push_back({k, slope});
   }
@@ -277,7 +290,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
                         physics::SimulationResult* sim_out) {
       physics::ControlProgram trial = program;
       trial[k].from_m = x;
-      physics::SimulationResult sim = engine.simulate(trial, run.start);
+      physics::SimulationResult sim = resimulate(trial);
       ++result.trim_iterations;
       const double f = error(sim);
       *trial_out = std::move(trial);

@@ -27,40 +27,15 @@ ForceEnvelope ForceEnvelope::table(std::vector<TablePoint> points, double power_
   return e;
 }
 
-double ForceEnvelope::raw_kN(double v_kmh) const {
-  if (!points_.empty()) {
-    if (v_kmh <= points_.front().speed_kmh) return points_.front().force_kN;
-    if (v_kmh >= points_.back().speed_kmh) return points_.back().force_kN;
-    auto it = std::upper_bound(points_.begin(), points_.end(), v_kmh,
-                               [](double v, const TablePoint& p) { return v < p.speed_kmh; });
-    const TablePoint& hi = *it;
-    const TablePoint& lo = *(it - 1);
-    const double w = (v_kmh - lo.speed_kmh) / (hi.speed_kmh - lo.speed_kmh);
-    return lo.force_kN + w * (hi.force_kN - lo.force_kN);
-  }
-  // The piece whose [from, to) holds v; beyond the last piece its polynomial is extrapolated.
-  // Pieces are sorted by from_kmh: the last one starting at or below v is the first one
-  // followed by a start above v.
-  const PolynomialPiece* piece = &pieces_.front();
-  for (const auto& p : pieces_) {
-    if (!(v_kmh >= p.from_kmh)) break;
-    piece = &p;
-  }
-  double f = 0.0;
-  for (auto c = piece->coeffs_kN.rbegin(); c != piece->coeffs_kN.rend(); ++c) f = f * v_kmh + *c;
-  return f;
-}
-
-double ForceEnvelope::force_kN_at_kmh(double v_kmh) const {
-  double f = std::max(0.0, raw_kN(v_kmh));
-  if (power_cap_kW_ > 0.0 && v_kmh > 0.0) {
-    f = std::min(f, power_cap_kW_ / units::kmh_to_ms(v_kmh));  // kW / (m/s) = kN
-  }
-  return f;
-}
-
-double ForceEnvelope::force_N(double v_ms) const {
-  return units::kN_to_N(force_kN_at_kmh(units::ms_to_kmh(v_ms)));
+double ForceEnvelope::table_kN(double v_kmh) const {
+  if (v_kmh <= points_.front().speed_kmh) return points_.front().force_kN;
+  if (v_kmh >= points_.back().speed_kmh) return points_.back().force_kN;
+  auto it = std::upper_bound(points_.begin(), points_.end(), v_kmh,
+                             [](double v, const TablePoint& p) { return v < p.speed_kmh; });
+  const TablePoint& hi = *it;
+  const TablePoint& lo = *(it - 1);
+  const double w = (v_kmh - lo.speed_kmh) / (hi.speed_kmh - lo.speed_kmh);
+  return lo.force_kN + w * (hi.force_kN - lo.force_kN);
 }
 
 }  // namespace ecorail::physics

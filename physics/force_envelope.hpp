@@ -5,9 +5,12 @@
 // is extrapolated; forces never go negative.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "physics/units.hpp"
 
 namespace ecorail::physics {
 
@@ -28,10 +31,19 @@ class ForceEnvelope {
   static ForceEnvelope piecewise(std::vector<PolynomialPiece> pieces, double power_cap_kW = 0.0);
   static ForceEnvelope table(std::vector<TablePoint> points, double power_cap_kW = 0.0);
 
-  // Maximum force in N at speed v (m/s), including the power cap.
-  double force_N(double v_ms) const;
+  // Maximum force in N at speed v (m/s), including the power cap. Inline: the forward
+  // re-simulation evaluates it several times per 5 cm step.
+  double force_N(double v_ms) const {
+    return units::kN_to_N(force_kN_at_kmh(units::ms_to_kmh(v_ms)));
+  }
   // Same in the edge units, for reports and fitting.
-  double force_kN_at_kmh(double v_kmh) const;
+  double force_kN_at_kmh(double v_kmh) const {
+    double f = std::max(0.0, raw_kN(v_kmh));
+    if (power_cap_kW_ > 0.0 && v_kmh > 0.0) {
+      f = std::min(f, power_cap_kW_ / units::kmh_to_ms(v_kmh));  // kW / (m/s) = kN
+    }
+    return f;
+  }
 
   bool is_table() const { return !points_.empty(); }
   const std::vector<PolynomialPiece>& pieces() const { return pieces_; }
@@ -40,7 +52,21 @@ class ForceEnvelope {
   bool empty() const { return pieces_.empty() && points_.empty(); }
 
  private:
-  double raw_kN(double v_kmh) const;
+  double raw_kN(double v_kmh) const {
+    if (!points_.empty()) return table_kN(v_kmh);
+    // The piece whose [from, to) holds v; beyond the last piece its polynomial is extrapolated.
+    // Pieces are sorted by from_kmh: the last one starting at or below v is the first one
+    // followed by a start above v.
+    const PolynomialPiece* piece = &pieces_.front();
+    for (const auto& p : pieces_) {
+      if (!(v_kmh >= p.from_kmh)) break;
+      piece = &p;
+    }
+    double f = 0.0;
+    for (auto c = piece->coeffs_kN.rbegin(); c != piece->coeffs_kN.rend(); ++c) f = f * v_kmh + *c;
+    return f;
+  }
+  double table_kN(double v_kmh) const;
 
   std::vector<PolynomialPiece> pieces_;
   std::vector<TablePoint> points_;

@@ -4,7 +4,7 @@
 
 namespace ecorail::physics {
 
-double Motion::force_for_N(Control c, double v_ms, double w) const {
+inline double Motion::force_for_N(Control c, double v_ms, double w) const {
   switch (c) {
     case Control::MaxTraction:
       return train_->max_traction_N(v_ms, w);
@@ -22,11 +22,16 @@ double Motion::applied_force_N(Control c, double v_ms, const RouteSegment& seg) 
   return force_for_N(c, v_ms, resistance_N(v_ms, seg));
 }
 
-double Motion::de_ds(Control c, double e, double track, double tunnel, double* force_N) const {
-  const double v = speed_from_e(e);
+inline double Motion::de_ds_at(Control c, double v, double track, double tunnel,
+                               double* force_N) const {
   const double w = resistance_N(v, track, tunnel);
   *force_N = force_for_N(c, v, w);
   return (*force_N - w) / train_->effective_mass_kg();
+}
+
+inline double Motion::de_ds(Control c, double e, double track, double tunnel,
+                            double* force_N) const {
+  return de_ds_at(c, speed_from_e(e), track, tunnel, force_N);
 }
 
 namespace {
@@ -53,20 +58,25 @@ Regime classify(double u, double max_traction, double max_brake) {
 
 Substep Motion::substep(double s_m, double e0, double h, Control c, int rk_order,
                         double e_cap_end) const {
-  return substep_impl<true>(s_m, e0, h, c, rk_order, e_cap_end);
+  return substep_impl<true>(segment_at(*route_, s_m), s_m, e0, h, c, rk_order, e_cap_end);
+}
+
+Substep Motion::substep_on(const RouteSegment& seg, double s_m, double e0, double h, Control c,
+                           int rk_order, double e_cap_end) const {
+  return substep_impl<true>(seg, s_m, e0, h, c, rk_order, e_cap_end);
 }
 
 template <bool kSupervised>
-Substep Motion::substep_impl(double s_m, double e0, double h, Control c, int rk_order,
-                             double e_cap_end) const {
-  const RouteSegment& seg = segment_at(*route_, s_m);
+Substep Motion::substep_impl(const RouteSegment& seg, double s_m, double e0, double h, Control c,
+                             int rk_order, double e_cap_end) const {
   const double track = seg.track_N_per_kN();
   const double tunnel = seg.tunnel_drag_N_per_kN_kmh2;
   Substep out;
   double u1, u2, u3, u4;
   double e1;
   double work;
-  const double k1 = de_ds(c, e0, track, tunnel, &u1);
+  const double v0 = speed_from_e(e0);
+  const double k1 = de_ds_at(c, v0, track, tunnel, &u1);
   if (rk_order >= 4) {
     const double k2 = de_ds(c, e0 + 0.5 * h * k1, track, tunnel, &u2);
     const double k3 = de_ds(c, e0 + 0.5 * h * k2, track, tunnel, &u3);
@@ -78,7 +88,6 @@ Substep Motion::substep_impl(double s_m, double e0, double h, Control c, int rk_
     e1 = e0 + 0.5 * h * (k1 + k2);
     work = 0.5 * h * (u1 + u2);
   }
-  const double v0 = speed_from_e(e0);
   out.length_m = h;
 
   if (e1 <= 0.0) {
@@ -180,9 +189,9 @@ Advance Motion::advance_impl(double s0, double e0, double s1, Control c, const S
   double s = s0;
   double e = e0;
   while (s < s1 - 1e-9) {
-    const double seg_end = segment_at(*route_, s).end_m;
-    const double next = std::min({s1, seg_end, s + st.max_substep_m});
-    const Substep sub = substep_impl<kSupervised>(s, e, next - s, c, st.rk_order,
+    const RouteSegment& seg = segment_at(*route_, s);
+    const double next = std::min({s1, seg.end_m, s + st.max_substep_m});
+    const Substep sub = substep_impl<kSupervised>(seg, s, e, next - s, c, st.rk_order,
                                                   std::numeric_limits<double>::infinity());
     if (e_max) *e_max = std::max(*e_max, sub.e_end);
     if (stopped) *stopped = *stopped || sub.stopped;

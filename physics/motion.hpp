@@ -67,6 +67,11 @@ class Motion {
   // envelope (the force is reduced, down to full braking, so the train lands on it).
   Substep substep(double s_m, double e, double h_m, Control c, int rk_order,
                   double e_cap_end = std::numeric_limits<double>::infinity()) const;
+  // The same on a segment the caller has already found (route().segments()[i] holding s_m, as
+  // a cursor along a run finds it): bit for bit substep()'s result without the look-up.
+  Substep substep_on(const RouteSegment& seg, double s_m, double e, double h_m, Control c,
+                     int rk_order,
+                     double e_cap_end = std::numeric_limits<double>::infinity()) const;
   // Advances from s0 to s1 with control c, splitting at route changes and max_substep.
   Advance advance(double s0_m, double e0, double s1_m, Control c, const StepSettings& st) const;
   // The same advance with the speed envelope not supervised. Where the envelope never binds
@@ -100,12 +105,15 @@ class Motion {
     const double v_kmh = 3.6 * v_ms;
     return w + train_->specific_to_N(tunnel_drag * v_kmh * v_kmh);
   }
-  double force_for_N(Control c, double v_ms, double w) const;
-  double de_ds(Control c, double e, double track_N_per_kN, double tunnel_drag,
-               double* force_N) const;
+  inline double force_for_N(Control c, double v_ms, double w) const;
+  // de/ds at specific energy e whose speed v_ms = speed_from_e(e) the caller already has.
+  inline double de_ds_at(Control c, double v_ms, double track_N_per_kN, double tunnel_drag,
+                         double* force_N) const;
+  inline double de_ds(Control c, double e, double track_N_per_kN, double tunnel_drag,
+                      double* force_N) const;
   template <bool kSupervised>
-  Substep substep_impl(double s_m, double e, double h_m, Control c, int rk_order,
-                       double e_cap_end) const;
+  Substep substep_impl(const RouteSegment& seg, double s_m, double e, double h_m, Control c,
+                       int rk_order, double e_cap_end) const;
   template <bool kSupervised>
   Advance advance_impl(double s0_m, double e0, double s1_m, Control c, const StepSettings& st,
                        double* e_max, bool* stopped) const;

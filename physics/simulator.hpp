@@ -4,6 +4,7 @@
 // position, overspeed) is measured here, never taken from an optimiser's own bookkeeping.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -62,6 +63,20 @@ struct SimulationOptions {
 // 10 m grid counted as stopped early, and the running-time search failed.
 inline constexpr double kArrivalSlack_m = 0.01;
 
+// The running state of a program run without a speed cap at the start of one of its steps,
+// kept every kCheckpointSteps steps so that a re-simulation of an edited program can resume
+// from it (see simulate() with an earlier run). e is the integrator's state itself, not
+// recomputed from the trace's speed (v^2 / 2 would not give back the same bits).
+struct SimulationCheckpoint {
+  std::size_t trace_size = 0;  // trace points written before this step
+  double s_m = 0.0;
+  double e = 0.0;
+  double t_s = 0.0;
+  EnergyLedger energy;
+  double max_overspeed_ms = 0.0;
+};
+inline constexpr std::size_t kCheckpointSteps = 256;
+
 struct SimulationResult {
   std::vector<TracePoint> trace;
   EnergyLedger energy;
@@ -76,6 +91,18 @@ struct SimulationResult {
   double max_cap_overspeed_ms = -std::numeric_limits<double>::infinity();
   double cap_binding_m = 0.0;
   double cap_wait_s = 0.0;
+  // Resumable state (program runs without a speed cap only; empty otherwise), with the program
+  // and options that produced it: a resumed run must use the same step, order and start. (The
+  // program is kept because callers may pair a run with a simplified program, whose steps end
+  // elsewhere.)
+  std::vector<SimulationCheckpoint> checkpoints;
+  ControlProgram checkpoint_program;
+  // The motion it ran on, as an identity only: a run of another motion is never reused.
+  const Motion* checkpoint_motion = nullptr;
+  double checkpoint_step_m = 0.0;
+  int checkpoint_rk_order = 0;
+  double checkpoint_start_speed_ms = 0.0;
+  double checkpoint_start_position_m = 0.0;
 };
 
 // Runs a feedback law; the law is queried once per step and steps end at each breakpoint.
@@ -84,5 +111,20 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
 // Runs a control program (a law that switches at fixed positions).
 SimulationResult simulate(const Motion& motion, const ControlProgram& program,
                           const SimulationOptions& opt);
+
+// Where two programs first differ: the smaller position of the first entry that is not the
+// same in both (position and control); +infinity for equal programs, -infinity when their
+// first entries differ.
+double first_difference_m(const ControlProgram& a, const ControlProgram& b);
+
+// Runs `program` as simulate(motion, program, opt) does, bit for bit, reusing `earlier`: a
+// run of another program (earlier.checkpoint_program) on the same motion with the same options.
+// Every step of the earlier run that ends strictly before the programs' first difference is
+// the same step in the new run (the same control, the same events: steps end at program
+// entries and route changes), so the new run resumes from the last checkpoint before it and
+// copies the trace up to there. Falls back to a full run when there is no such checkpoint,
+// with a speed cap, or when `earlier` was made with another motion or other options.
+SimulationResult simulate(const Motion& motion, const ControlProgram& program,
+                          const SimulationOptions& opt, const SimulationResult& earlier);
 
 }  // namespace ecorail::physics

@@ -64,27 +64,8 @@ SpeedEnvelope::SpeedEnvelope(const Train& train, const Route& route, double reso
   }
 }
 
-namespace {
-double interpolate(const std::vector<double>& samples, double h, double s) {
-  if (s <= 0.0) return samples.front();
-  const double x = s / h;
-  const auto k = static_cast<std::size_t>(x);
-  if (k + 1 >= samples.size()) return samples.back();
-  const double w = x - static_cast<double>(k);
-  return samples[k] + w * (samples[k + 1] - samples[k]);
-}
-}  // namespace
-
-double SpeedEnvelope::e_at(double s_m) const {
-  return interpolate(e_, h_, s_m);
-}
-
 double SpeedEnvelope::v_at(double s_m) const {
   return std::sqrt(2.0 * std::max(0.0, e_at(s_m)));
-}
-
-double SpeedEnvelope::static_limit_ms(double s_m) const {
-  return std::sqrt(2.0 * interpolate(e_static_, h_, s_m));
 }
 
 }  // namespace ecorail::physics

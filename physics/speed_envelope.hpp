@@ -7,6 +7,8 @@
 // promises a speed the line does not allow.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "physics/route.hpp"
@@ -19,14 +21,26 @@ class SpeedEnvelope {
   SpeedEnvelope() = default;
   SpeedEnvelope(const Train& train, const Route& route, double resolution_m = 0.1);
 
-  // Envelope as specific kinetic energy v^2/2 at s (linear between samples).
-  double e_at(double s_m) const;
+  // Envelope as specific kinetic energy v^2/2 at s (linear between samples). Inline, as is the
+  // static limit: the forward re-simulation asks for both at every 5 cm step.
+  double e_at(double s_m) const { return interpolate(e_, h_, s_m); }
   double v_at(double s_m) const;
   // The static limit alone (line limit and train maximum), without braking curves.
-  double static_limit_ms(double s_m) const;
+  double static_limit_ms(double s_m) const {
+    return std::sqrt(2.0 * interpolate(e_static_, h_, s_m));
+  }
   double resolution_m() const { return h_; }
 
  private:
+  static double interpolate(const std::vector<double>& samples, double h, double s) {
+    if (s <= 0.0) return samples.front();
+    const double x = s / h;
+    const auto k = static_cast<std::size_t>(x);
+    if (k + 1 >= samples.size()) return samples.back();
+    const double w = x - static_cast<double>(k);
+    return samples[k] + w * (samples[k + 1] - samples[k]);
+  }
+
   double h_ = 0.1;
   double length_ = 0.0;
   std::vector<double> e_;         // envelope samples

@@ -7,10 +7,12 @@
 // the effective mass M (1 + rho).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "physics/force_envelope.hpp"
+#include "physics/units.hpp"
 
 namespace ecorail::physics {
 
@@ -83,18 +85,29 @@ struct Train {
   double specific_to_N(double w_N_per_kN) const {
     return w_N_per_kN * mass_kg * gravity_m_s2 / 1000.0;
   }
-  // Davis specific resistance w0 in N/kN at v (m/s).
-  double davis_N_per_kN(double v_ms) const;
+  // Davis specific resistance w0 in N/kN at v (m/s). This and the force limits below are
+  // inline: the forward re-simulation evaluates them several times per 5 cm step.
+  double davis_N_per_kN(double v_ms) const {
+    const double v = units::ms_to_kmh(v_ms);
+    return davis.A + v * (davis.B + v * davis.C);
+  }
   // Total resistance in N at speed v for a track term (gradient + curve) in N/kN.
   double resistance_N(double v_ms, double track_N_per_kN) const {
     return specific_to_N(davis_N_per_kN(v_ms) + track_N_per_kN);
   }
   // Largest traction force applicable at v against resistance W: the envelope, reduced where the
   // net acceleration would exceed max_accel.
-  double max_traction_N(double v_ms, double resistance_N) const;
+  double max_traction_N(double v_ms, double resistance_N) const {
+    const double limit = effective_mass_kg() * max_accel_m_s2 + resistance_N;
+    return std::max(0.0, std::min(traction.force_N(v_ms), limit));
+  }
   // Largest braking force (a positive number) applicable at v against resistance W: the
   // regenerative envelope plus the pneumatic brake, reduced to keep within max_decel.
-  double max_brake_N(double v_ms, double resistance_N) const;
+  double max_brake_N(double v_ms, double resistance_N) const {
+    // dv/dt = (-b - W) / M_eff >= -max_decel  <=>  b <= M_eff max_decel - W
+    const double limit = effective_mass_kg() * max_decel_m_s2 - resistance_N;
+    return std::max(0.0, std::min(braking.force_N(v_ms) + pneumatic_brake_N, limit));
+  }
 };
 
 }  // namespace ecorail::physics
