@@ -21,14 +21,24 @@ namespace {
 
 // The sweep for a price per stage (price(i): the price of a transition out of stage i) and, if
 // band_of is not empty, the speed band of each stage (nullptr: none). One body for both forms,
-// so a constant price makes the same arithmetic as the single-price sweep.
+// so a constant price makes the same arithmetic as the single-price sweep. end_band (nullptr:
+// at rest at the stop) is the speed band of a run that ends moving: every node of the last
+// stage inside it ends the run at cost 0.
 template <typename PriceOf>
 void sweep(const StageGrid& grid, const TransitionTable& table, const PriceOf& price_of,
-           const std::vector<const SpeedBand*>& band_of, ValueFunction& value) {
+           const std::vector<const SpeedBand*>& band_of, ValueFunction& value,
+           const SpeedBand* end_band = nullptr) {
   const int last = grid.stage_count() - 1;
   value.cost_to_go.assign(grid.total_nodes(), kInfeasible);
   value.best.assign(grid.total_nodes(), 0);
   value.cost_to_go[grid.offset(last)] = 0.0;  // at rest at the stop
+  if (end_band != nullptr) {
+    for (int j = 0; j < grid.node_count(last); ++j) {
+      const double v = grid.speed(last, j);
+      const bool inside = v >= end_band->min_ms - 1e-9 && v <= end_band->max_ms + 1e-9;
+      value.cost_to_go[grid.offset(last) + j] = inside ? 0.0 : kInfeasible;
+    }
+  }
   double* J = value.cost_to_go.data();
   std::uint8_t* best = value.best.data();
   // One parallel region for the whole sweep, scheduled chunk by chunk on data dependencies
@@ -109,8 +119,10 @@ void backward_sweep(const StageGrid& grid, const TransitionTable& table, const S
   value.lambda = prices.lambda_J_per_s.back();
   value.stage_lambda = prices.lambda_J_per_s;
   const std::vector<double>& lambdas = prices.lambda_J_per_s;
+  const SpeedBand end_band{last, prices.end_min_ms, prices.end_max_ms};
   sweep(
-      grid, table, [&lambdas](int i) { return lambdas[i]; }, band_of, value);
+      grid, table, [&lambdas](int i) { return lambdas[i]; }, band_of, value,
+      prices.end_moving ? &end_band : nullptr);
 }
 
 }  // namespace ecorail::dp

@@ -63,6 +63,20 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
   }
 }
 
+SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
+                             const EngineOptions& options, const physics::Route& envelope_route)
+    : train_(train),
+      route_(route),
+      options_(validated(options, train, envelope_route)),
+      envelope_(train_, envelope_route, options.envelope_resolution_m),
+      motion_(train_, route_, envelope_),
+      grid_(envelope_, route_.length_m(), options.grid) {
+  if (options_.keep_transitions) {
+    const ThreadScope threads(options_.threads);
+    table_ = build_table();
+  }
+}
+
 std::unique_ptr<TransitionTable> SectionEngine::build_table() const {
   return std::make_unique<TransitionTable>(motion_, grid_, options_.objective, dp_step());
 }

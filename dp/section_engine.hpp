@@ -61,6 +61,13 @@ class SectionEngine {
  public:
   SectionEngine(const physics::Train& train, const physics::Route& route,
                 const EngineOptions& options);
+  // The same over route with the speed envelope of envelope_route, a route that begins as route
+  // does and runs on past its end: the envelope then does not brake to rest at route's end, and
+  // a run may end moving (a journey's last timing point with a speed above 0; the last stage's
+  // speeds are chosen by StagePrices::end_moving). With envelope_route == route, the engine is
+  // the one above.
+  SectionEngine(const physics::Train& train, const physics::Route& route,
+                const EngineOptions& options, const physics::Route& envelope_route);
   SectionEngine(const SectionEngine&) = delete;
   SectionEngine& operator=(const SectionEngine&) = delete;
 

@@ -2,8 +2,9 @@
 // speed bands at chosen stages. A journey with timing points prices a second spent before a
 // binding window differently from one spent after it (dp/timing_journey.hpp): the backward
 // sweep then charges lambda(stage) * dt on each transition out of a stage, and a speed window
-// at a timing point makes every node of its stage outside the window infeasible. With one price
-// everywhere and no band, a sweep gives bit for bit what the single-price sweep gives.
+// at a timing point makes every node of its stage outside the window infeasible, and a band at
+// the last stage lets a run end moving. With one price everywhere and no band, a sweep gives
+// bit for bit what the single-price sweep gives.
 #pragma once
 
 #include <vector>
@@ -21,6 +22,14 @@ struct StagePrices {
   // One price (J/s) per transition out of stage i (i = 0 .. stage_count - 2).
   std::vector<double> lambda_J_per_s;
   std::vector<SpeedBand> bands;
+  // A run that ends moving (a journey's last timing point with a speed window above 0): every
+  // node of the last stage with a speed in [end_min_ms, end_max_ms] ends the run at cost 0, the
+  // others are infeasible. Off (the default): the run ends at rest at the stop. The grid's last
+  // stage has nodes above 0 only when the engine's speed envelope does not brake to rest at the
+  // end (SectionEngine built with an envelope route that runs on past the end).
+  bool end_moving = false;
+  double end_min_ms = 0.0;
+  double end_max_ms = 0.0;
 };
 
 }  // namespace ecorail::dp

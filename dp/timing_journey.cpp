@@ -9,6 +9,7 @@
 #include "dp/lambda_bracket.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
+#include "physics/speed_envelope.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
@@ -84,6 +85,24 @@ bool finite(double x) {
   return std::isfinite(x);
 }
 
+// Whether a run reaches the end of its part as the part asks: at rest at the stop
+// (run_arrives), or, for a part that ends moving, at the end of the stretch without coming to
+// rest before it, with its end speed inside the last point's speed window (within tol_ms).
+struct EndCheck {
+  bool moving = false;
+  double min_ms = 0.0, max_ms = 0.0, tol_ms = 0.0;
+  bool reaches_end(const physics::SimulationResult& sim) const {
+    if (!moving) return run_arrives(sim);
+    return !sim.stopped_early && !sim.trace.empty() &&
+           sim.trace.back().s_m >= sim.end_position_m - sim.stop_error_m - physics::kArrivalSlack_m;
+  }
+  bool operator()(const physics::SimulationResult& sim) const {
+    if (!moving) return run_arrives(sim);
+    return reaches_end(sim) && sim.end_speed_ms >= min_ms - tol_ms &&
+           sim.end_speed_ms <= max_ms + tol_ms;
+  }
+};
+
 // A passing point inside a part, as the part's engine sees it.
 struct PartPoint {
   int index = 0;                            // into the journey's windows
@@ -147,10 +166,11 @@ void falling_root(F f, double x0, double step, double x_min, double x_max, int b
 // phase, or the onset of braking: later is faster for both) so that error(sim) (a time minus
 // its target, falling as the switch moves later) is within tol_s; the first candidate that
 // brackets the root is bisected. Switches outside (lo_m, hi_m) do not move, so a trim after a
-// timing point leaves its passing time alone. Returns the evaluations used.
+// timing point leaves its passing time alone. A candidate must reach the end as `arrives` asks.
+// Returns the evaluations used.
 template <typename Error>
-int trim_switch(const SectionEngine& engine, LambdaRun& run, double lo_m, double hi_m, Error error,
-                double tol_s) {
+int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun& run, double lo_m,
+                double hi_m, Error error, double tol_s) {
   int used = 0;
   // Only a last correction: a larger miss is the price search's to close, not a switch's.
   const double miss = std::abs(error(run.sim));
@@ -170,7 +190,7 @@ int trim_switch(const SectionEngine& engine, LambdaRun& run, double lo_m, double
       p[k].from_m = x;
       physics::SimulationResult sim = engine.simulate(p, run.start);
       ++used;
-      const double e = run_arrives(sim) ? error(sim) : kInf;
+      const double e = arrives(sim) ? error(sim) : kInf;
       if (p_out) *p_out = std::move(p);
       if (s_out) *s_out = std::move(sim);
       return e;
@@ -204,11 +224,12 @@ int trim_switch(const SectionEngine& engine, LambdaRun& run, double lo_m, double
 // added as speed bands at their stage, and the search is repeated with them.
 class PartSolver {
  public:
-  PartSolver(const SectionEngine& engine, const StartState& start, double target_s,
-             double earliest_arrival_s, std::vector<PartPoint> points,
+  PartSolver(const SectionEngine& engine, const StartState& start, const EndCheck& end,
+             double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
              const std::vector<TimingWindow>& windows, const TimingJourneyOptions& options)
       : engine_(engine),
         start_(start),
+        end_(end),
         target_s_(target_s),
         earliest_arrival_s_(earliest_arrival_s),
         points_(std::move(points)),
@@ -231,6 +252,9 @@ class PartSolver {
       for (int i = 0; i < upto; ++i) p.lambda_J_per_s[i] = before;
     }
     p.bands = bands_;
+    p.end_moving = end_.moving;
+    p.end_min_ms = end_.min_ms;
+    p.end_max_ms = end_.max_ms;
     return p;
   }
 
@@ -254,7 +278,7 @@ class PartSolver {
     return !finite(at.v_ms) || at.v_ms < w.min_speed_ms - tol || at.v_ms > w.max_speed_ms + tol;
   }
   double arrival_error_s(const LambdaRun& run) const {
-    return run_arrives(run.sim) ? run.sim.running_time_s - target_s_ : kInf;
+    return end_(run.sim) ? run.sim.running_time_s - target_s_ : kInf;
   }
 
   // For a fixed price before the binding point (before < 0: one price everywhere), the run
@@ -295,14 +319,37 @@ class PartSolver {
     return best;
   }
 
+  // The last hundredths of the arrival by one switch point after from_m (when the arrival
+  // binds: the run is not early by more than the search's tolerance).
+  void trim_arrival(LambdaRun& run, double from_m) {
+    if (run.sim.running_time_s > target_s_ - kArrivalTolerance_s) {
+      evaluations_ += trim_switch(
+          engine_, end_, run, from_m, engine_.route().length_m(),
+          [&](const physics::SimulationResult& sim) { return sim.running_time_s - target_s_; },
+          kTrimTolerance_s);
+    }
+  }
+
   LambdaRun solve(bool* met) {
-    TimeSearchOptions search;
-    const TimeSearchResult plain = solve_for_time(engine_, target_s_, search, start_);
-    evaluations_ += plain.iterations;
-    LambdaRun run = plain.run;
-    bool ok = plain.converged;
-    lambda_before_ = lambda_after_ = run.lambda;
-    x_after_guess_ = std::log(std::max(1.0, run.lambda));
+    LambdaRun run;
+    bool ok = false;
+    if (!end_.moving) {
+      TimeSearchOptions search;
+      const TimeSearchResult plain = solve_for_time(engine_, target_s_, search, start_);
+      evaluations_ += plain.iterations;
+      run = plain.run;
+      ok = plain.converged;
+      lambda_before_ = lambda_after_ = run.lambda;
+      x_after_guess_ = std::log(std::max(1.0, run.lambda));
+    } else {
+      // A run that ends moving: the plain search ends at rest, so the one price is searched
+      // here, with the end's speed band (StagePrices::end_moving).
+      Inner in = solve_arrival(-1.0);
+      run = std::move(in.run);
+      ok = in.ok;
+      lambda_before_ = lambda_after_ = std::exp(in.x_after);
+      if (ok) trim_arrival(run, 0.0);
+    }
     for (int round = 0; round < 3; ++round) {
       // Speed windows the run misses become bands.
       bool new_band = false;
@@ -338,6 +385,7 @@ class PartSolver {
         run = std::move(in.run);
         ok = in.ok;
         lambda_before_ = lambda_after_ = std::exp(in.x_after);
+        if (ok) trim_arrival(run, 0.0);
         continue;
       }
       if (worst >= 0) binding_ = worst;
@@ -379,17 +427,12 @@ class PartSolver {
       // the point for its passing time, then one after it for the arrival (if it binds).
       const double s_k = p.s_m;
       evaluations_ += trim_switch(
-          engine_, run, 0.0, s_k,
+          engine_, end_, run, 0.0, s_k,
           [&](const physics::SimulationResult& sim) {
             return passing_at(sim.trace, s_k).t_s - bound;
           },
           kTrimTolerance_s);
-      if (run.sim.running_time_s > target_s_ - kArrivalTolerance_s) {
-        evaluations_ += trim_switch(
-            engine_, run, s_k, engine_.route().length_m(),
-            [&](const physics::SimulationResult& sim) { return sim.running_time_s - target_s_; },
-            kTrimTolerance_s);
-      }
+      trim_arrival(run, s_k);
     }
     if (binding_ >= 0 && ok) {
       const PartPoint& p = points_[binding_];
@@ -419,6 +462,7 @@ class PartSolver {
 
   const SectionEngine& engine_;
   StartState start_;
+  EndCheck end_;
   double target_s_;
   double earliest_arrival_s_;
   std::vector<PartPoint> points_;
@@ -483,15 +527,39 @@ void check_structure(const std::vector<TimingWindow>& w, double track_length_m) 
   if (w.back().position_m <= w.front().position_m) {
     throw WindowInfeasibleError(n - 1, "the last timing point must lie after the first");
   }
-  if (w.back().min_speed_ms > 0.0) {
-    throw WindowInfeasibleError(
-        n - 1, point_name(n - 1, w.back()) +
-                   " asks to arrive moving (min speed > 0): runs that end moving are not "
-                   "supported yet (docs/ttobench.md)");
-  }
   if (!finite(w.back().latest_s)) {
     throw WindowInfeasibleError(
         n - 1, point_name(n - 1, w.back()) + " needs a latest time (the arrival's)");
+  }
+}
+
+// The route whose speed envelope a part that ends moving uses: the part, then a level, straight
+// stretch whose limit is the end window's top speed (the line's limit at the end when that is
+// lower or the window has none), long enough that the envelope does not brake to rest before
+// its end. The envelope at the end point is then the lower of the window's top speed and the
+// line's limit there, and the grid's last stage has every speed up to it. Nothing beyond the
+// last timing point is braked for: the journey ends there.
+physics::Route runoff_route(const physics::Train& train, const physics::Route& part, double top_ms,
+                            double resolution_m) {
+  const double length = part.length_m();
+  physics::RouteSegment extra = part.segments().back();
+  extra.start_m = length;
+  extra.gradient_permille = 0.0;
+  extra.curve_radius_m = 0.0;
+  extra.curve_N_per_kN = -1.0;
+  extra.tunnel_drag_N_per_kN_kmh2 = 0.0;
+  if (finite(top_ms)) extra.speed_limit_ms = std::min(extra.speed_limit_ms, top_ms);
+  const int direction = part.km_post_m(1.0) >= part.km_post_m(0.0) ? 1 : -1;
+  for (double runoff_m = 500.0;; runoff_m *= 2.0) {
+    std::vector<physics::RouteSegment> segs = part.segments();
+    extra.end_m = length + runoff_m;
+    segs.push_back(extra);
+    physics::Route route(std::move(segs), part.km_post_m(0.0), direction, part.from_name(),
+                         part.to_name());
+    const physics::SpeedEnvelope envelope(train, route, resolution_m);
+    if (envelope.v_at(length) >= envelope.static_limit_ms(length) - 1e-6 || runoff_m > 2e5) {
+      return route;
+    }
   }
 }
 
@@ -513,10 +581,27 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   const std::vector<PartBounds> bounds = split_into_parts(windows);
   std::vector<std::unique_ptr<SectionEngine>> engines;
   std::vector<StartState> starts;
+  // A last point that is not a stop (its speed window reaches above 0): the last part ends
+  // moving, with that window as its end band (at rest is allowed when the window holds 0).
+  EndCheck moving_end;
+  moving_end.moving = !windows.back().is_stop();
+  moving_end.min_ms = std::max(0.0, windows.back().min_speed_ms);
+  moving_end.max_ms = windows.back().max_speed_ms;
+  moving_end.tol_ms = tol_v;
+  std::vector<EndCheck> ends;
   for (const PartBounds& b : bounds) {
     out.routes.push_back(
         slice_route(track, windows[b.first].position_m, windows[b.last].position_m));
-    engines.push_back(std::make_unique<SectionEngine>(train, out.routes.back(), options.engine));
+    const bool moving = b.last == n - 1 && moving_end.moving;
+    ends.push_back(moving ? moving_end : EndCheck{});
+    if (moving) {
+      const physics::Route envelope_route = runoff_route(
+          train, out.routes.back(), moving_end.max_ms, options.engine.envelope_resolution_m);
+      engines.push_back(std::make_unique<SectionEngine>(train, out.routes.back(), options.engine,
+                                                        envelope_route));
+    } else {
+      engines.push_back(std::make_unique<SectionEngine>(train, out.routes.back(), options.engine));
+    }
     // A run that starts moving starts at the first point's lowest allowed speed.
     const double v0 = b.first == 0 ? std::max(0.0, windows[0].min_speed_ms) : 0.0;
     starts.push_back({0.0, v0});
@@ -552,8 +637,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
       const physics::SimulationResult flat = engine.min_time_run({s, v});
       const Passing at_next = passing_at(flat.trace, windows[i + 1].position_m - origin);
       min_leg_s[i + 1] = finite(at_next.t_s) ? at_next.t_s : kInf;
-      if (finite(at_next.v_ms) && windows[i + 1].min_speed_ms > at_next.v_ms + tol_v &&
-          i + 1 < bounds[j].last) {
+      if (finite(at_next.v_ms) && windows[i + 1].min_speed_ms > at_next.v_ms + tol_v) {
         throw WindowInfeasibleError(
             i + 1, format_text("%s: min speed %.2f km/h cannot be met: the train reaches at "
                                "most %.2f km/h there",
@@ -656,8 +740,8 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
     }
     const double target = part.arrival_target_s - part.departure_s;
     const double earliest_arrival = windows[part.last_point].earliest_s - part.departure_s;
-    auto solver = std::make_unique<PartSolver>(engine, starts[j], target, earliest_arrival, points,
-                                               windows, options);
+    auto solver = std::make_unique<PartSolver>(engine, starts[j], ends[j], target, earliest_arrival,
+                                               points, windows, options);
     bool met = false;
     LambdaRun run;
     try {
@@ -671,13 +755,14 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
           "part %zu: its latest arrival is beyond the slowest run the grid solves reliably; it "
           "arrives at %.1f s",
           j + 1, latest_ok));
-      solver = std::make_unique<PartSolver>(engine, starts[j], latest_ok - part.departure_s,
-                                            earliest_arrival, points, windows, options);
+      solver =
+          std::make_unique<PartSolver>(engine, starts[j], ends[j], latest_ok - part.departure_s,
+                                       earliest_arrival, points, windows, options);
       run = solver->solve(&met);
     }
     part.evaluations = solver->evaluations();
     part_points[j] = solver->points();
-    all_arrive = all_arrive && run_arrives(run.sim);
+    all_arrive = all_arrive && ends[j].reaches_end(run.sim);
     all_met = all_met && met;
     for (const auto& note : solver->notes()) out.summary.warnings.push_back(note);
     // Prices of the stretches, first to last: lambda_before up to the binding point.
@@ -690,6 +775,12 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
     binding_sign[j] = binding < 0 ? 0 : solver->lambda_before() > solver->lambda_after() ? 1 : -1;
     binding_point[j] = binding < 0 ? -1 : points[binding].index;
 
+    if (ends[j].moving && ends[j].reaches_end(run.sim) && run.sim.end_speed_ms > 0.0) {
+      // The simulator reports a moving end's stop error as where full braking would bring it
+      // to rest; this run's end is the end point itself, which it reaches (it does not stop).
+      run.sim.end_position_m -= run.sim.stop_error_m;
+      run.sim.stop_error_m = 0.0;
+    }
     JourneySection sec;
     sec.run = std::move(run);
     sec.regimes = regime_spans(sec.run.sim.trace);
@@ -742,7 +833,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
       record(p.index, part.departure_s + at.t_s, at.v_ms, false, false,
              p.index == binding_point[j] ? binding_sign[j] : 0);
     }
-    const bool arrives = run_arrives(sim);
+    const bool arrives = ends[j].reaches_end(sim);
     record(part.last_point, arrives ? part.departure_s + sim.running_time_s : NAN,
            arrives ? sim.end_speed_ms : NAN, false, true, 0.0);
   }

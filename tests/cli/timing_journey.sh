@@ -71,6 +71,32 @@ for d in (a, b):
 assert a == b, [k for k in a if a[k] != b.get(k)]
 PY
 
+# Runs that end moving: the last point asks for 3.6 km/h (other solvers end at 1 m/s), or for
+# 3.6 km/h or more, or for any speed. Each ends inside its band at the latest time, and a looser
+# band never costs more (any speed <= at rest, the plain run above; [3.6, -) <= [3.6, 3.6]).
+journey end_exact.json '[[0,0,0,0,0],[3000,150,190,3.6,3.6]]'
+journey end_above.json '[[0,0,0,0,0],[3000,150,190,3.6,null]]'
+journey end_any.json '[[0,0,0,0,0],[3000,150,190,null,null]]'
+for e in end_exact end_above end_any; do
+  "$ecorail" solve --line track.data --train train.data --journey $e.json "${grid[@]}" --json ${e}_out.json \
+    --csv $e.csv > /dev/null 2> err.txt || { echo "FAIL: journey $e"; cat err.txt; fail=1; }
+done
+python3 - end_exact_out.json end_above_out.json end_any_out.json plain.json <<'PY' || fail=1
+import json, sys
+exact, above, any_, plain = (json.load(open(f)) for f in sys.argv[1:])
+for j, lo, hi in ((exact, 3.6, 3.6), (above, 3.6, 1e9), (any_, 0.0, 1e9)):
+    assert j["windows_met"] is True and j["termination"] == "CONVERGENCE", j["termination"]
+    end = j["windows"][-1]
+    assert lo - 0.1 <= end["speed_kmh"] <= hi + 0.1, end
+    assert abs(end["time_s"] - 190) <= 0.05 and "latest" in end["binds"], end
+    assert j["stop_error_m"] == 0, j["stop_error_m"]
+assert exact["windows"][-1]["binds"] == ["latest", "min_speed", "max_speed"], exact["windows"][-1]
+e = lambda j: j["traction_energy_kJ"]
+assert e(above) <= e(exact) * 1.002, (e(above), e(exact))
+assert e(any_) <= e(above) * 1.002, (e(any_), e(above))
+assert e(any_) <= e(plain) * 1.002, (e(any_), e(plain))
+PY
+
 # A window below the flat-out time: refused naming it, nothing written.
 journey fast.json '[[0,0,0,0,0],[1500,0,20,null,null],[3000,150,190,0,0]]'
 expect_error "fast.json: field 'timing points.values[1]'" solve --line track.data --train train.data \
