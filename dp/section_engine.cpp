@@ -234,7 +234,12 @@ LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& 
   out.sim = base ? resimulate(out.program, start, resim_step_m, *base)
                  : simulate(out.program, start, resim_step_m);
   if (!out.sim.checkpoints.empty()) {
-    auto kept = std::make_shared<const physics::SimulationResult>(out.sim);
+    // Kept up to the end of the first phase (where programs of different prices first part):
+    // a fraction of the run's memory, and about all that the next run can reuse.
+    const double first_switch_m =
+        out.program.size() > 1 ? out.program[1].from_m : std::numeric_limits<double>::infinity();
+    auto kept = std::make_shared<const physics::SimulationResult>(
+        physics::resume_prefix(out.sim, first_switch_m));
     const std::lock_guard<std::mutex> lock(resume_mutex_);
     resume_base_ = std::move(kept);
   }

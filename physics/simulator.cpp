@@ -268,4 +268,22 @@ SimulationResult simulate(const Motion& motion, const ControlProgram& program,
   return out;
 }
 
+SimulationResult resume_prefix(const SimulationResult& run, double up_to_m) {
+  SimulationResult out;
+  std::size_t j = 0;
+  while (j < run.checkpoints.size() && run.checkpoints[j].s_m < up_to_m) ++j;
+  if (j == 0) return out;
+  out.checkpoints.assign(run.checkpoints.begin(),
+                         run.checkpoints.begin() + static_cast<std::ptrdiff_t>(j));
+  out.trace.assign(run.trace.begin(), run.trace.begin() + static_cast<std::ptrdiff_t>(
+                                                              out.checkpoints.back().trace_size));
+  out.checkpoint_program = run.checkpoint_program;
+  out.checkpoint_motion = run.checkpoint_motion;
+  out.checkpoint_step_m = run.checkpoint_step_m;
+  out.checkpoint_rk_order = run.checkpoint_rk_order;
+  out.checkpoint_start_speed_ms = run.checkpoint_start_speed_ms;
+  out.checkpoint_start_position_m = run.checkpoint_start_position_m;
+  return out;
+}
+
 }  // namespace ecorail::physics

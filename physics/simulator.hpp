@@ -127,4 +127,10 @@ double first_difference_m(const ControlProgram& a, const ControlProgram& b);
 SimulationResult simulate(const Motion& motion, const ControlProgram& program,
                           const SimulationOptions& opt, const SimulationResult& earlier);
 
+// What of `run` a resume can use before position up_to_m: its checkpoints before there and
+// its trace up to the last of them, with the program, motion and options (the run's other
+// figures are not kept). Resuming from it is as exact as from the whole run; it reaches no
+// further than up_to_m, and it is much smaller to keep.
+SimulationResult resume_prefix(const SimulationResult& run, double up_to_m);
+
 }  // namespace ecorail::physics

@@ -5,7 +5,8 @@
 // are drawn at random (counter-based draws): switch points moved far, moved by less than the
 // event tolerance, moved onto a step boundary, a checkpoint or a route change; controls
 // changed (the first entry too); entries inserted and deleted. Each edit resumes from the
-// previous resumed run, so checkpoints written by a resumed run are exercised as well. Two
+// previous resumed run, so checkpoints written by a resumed run are exercised as well, and
+// some from only a prefix of it (physics::resume_prefix, what an engine keeps). Two
 // routes: A6 -> A7 of the embedded line, and a TTOBench-like route (gradient, curve, tunnel and
 // limit changes) driven by a train with a tabulated traction curve and a pneumatic brake.
 #include <gtest/gtest.h>
@@ -172,6 +173,13 @@ int check_edits(const Motion& motion, std::uint64_t seed, int programs, int edit
       expect_same(full, resumed_run,
                   "program " + std::to_string(r) + ", edit " + std::to_string(i));
       if (::testing::Test::HasFatalFailure()) return resumed;
+      if (i % 3 == 0) {
+        // The same from only a prefix of the earlier run (what an engine keeps).
+        const double up_to = (0.1 + 0.8 * d.uniform()) * motion.route().length_m();
+        expect_same(full, simulate(motion, next, opt, resume_prefix(sim, up_to)),
+                    "prefix, program " + std::to_string(r) + ", edit " + std::to_string(i));
+        if (::testing::Test::HasFatalFailure()) return resumed;
+      }
       program = std::move(next);
       sim = std::move(resumed_run);
     }
