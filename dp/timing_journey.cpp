@@ -177,6 +177,7 @@ int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun&
   if (miss <= tol_s || !(miss <= kMaxTrim_s)) return used;
   const physics::ControlProgram program = run.program;
   const double length = engine.route().length_m();
+
   for (std::size_t k = 1; k < program.size(); ++k) {
     const bool traction_end = program[k - 1].control == physics::Control::MaxTraction;
     const bool brake_onset = program[k].control == physics::Control::MaxBrake;
@@ -216,12 +217,18 @@ int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun&
 
 // One part's search for its prices. First the plain running-time search for the latest
 // arrival (one price): if every passing window holds, that is the optimum (a non-binding
-// window changes nothing). Otherwise the most missed passing window binds at its bound: the
-// price before it (lambda_before) and after it (lambda_after) are searched, the outer on
-// lambda_before for the passing time, the inner on lambda_after for the arrival. The arrival
-// is a window too: when even the lowest price after the point arrives before the latest
-// arrival, the arrival does not bind and that run is kept. Speed windows missed by the run are
-// added as speed bands at their stage, and the search is repeated with them.
+// window changes nothing). Otherwise the most missed passing window binds at its bound, and
+// each binding point gets the price of the stretch that ends at it (from the binding point
+// before it, or the start); the stretch after the last binding point has lambda_after. The
+// outer search is on the price before a binding point for its passing time, the inner on
+// lambda_after for the arrival. With one binding point that is one root search; with several,
+// each price is searched for its own point's time in turn (the others held), cycling until
+// every binding point is within the search's tolerance (coordinate-wise; a price moves its own
+// point most, and the later points only by the same shift, which their own prices take back).
+// A window still missed joins the binding set and the search is repeated. The arrival is a
+// window too: when even the lowest price after the last binding point arrives before the
+// latest arrival, the arrival does not bind and that run is kept. Speed windows missed by the
+// run are added as speed bands at their stage, and the search is repeated with them.
 class PartSolver {
  public:
   PartSolver(const SectionEngine& engine, const StartState& start, const EndCheck& end,
@@ -239,17 +246,52 @@ class PartSolver {
   int evaluations() const { return evaluations_; }
   const std::vector<PartPoint>& points() const { return points_; }
   const std::vector<std::string>& notes() const { return notes_; }
-  double lambda_before() const { return lambda_before_; }
-  double lambda_after() const { return lambda_after_; }
-  int binding() const { return binding_; }
+  // The price of stretch k of the part (k = 0 .. points().size(): the stretch that ends at
+  // point k, or at the arrival).
+  double stretch_price(int k) const {
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      if (k <= binding_[m]) return before_[m];
+    }
+    return lambda_after_;
+  }
+  // With several binding points, one that the others already keep well inside its window
+  // (even its lowest price passes it early for a latest bound, late for an earliest one) does
+  // not bind after all: its window is inactive at the optimum and is not reported as binding.
+  bool inactive(std::size_t m) const { return m < inactive_.size() && inactive_[m]; }
+  void mark_inactive(const LambdaRun& run) {
+    inactive_.assign(binding_.size(), false);
+    if (binding_.size() < 2) return;
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      const PartPoint& p = points_[binding_[m]];
+      const double t = passing_at(run.sim.trace, p.s_m).t_s;
+      const double margin = 2.0 * kInside_s + options_.time_tolerance_s;
+      inactive_[m] = finite(t) && t > p.earliest_s + margin && t < p.latest_s - margin;
+    }
+  }
 
-  StagePrices prices(double before, double after) const {
+  // How far inside its bound a binding passing point may pass (see search_target_s).
+  double binding_slack_s() const { return binding_.size() > 1 ? 2.0 * kInside_s : 0.0; }
+  // The sign of point k's multiplier: +1 its latest bound binds (the price before it is the
+  // higher), -1 its earliest, 0 it does not bind.
+  int binding_sign(int k) const {
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      if (binding_[m] != k || inactive(m)) continue;
+      const double next = m + 1 < binding_.size() ? before_[m + 1] : lambda_after_;
+      return before_[m] > next ? 1 : -1;
+    }
+    return 0;
+  }
+
+  // before: the price of the stretch ending at each binding point (empty: one price, after).
+  StagePrices prices(const std::vector<double>& before, double after) const {
     StagePrices p;
     const int transitions = engine_.grid().stage_count() - 1;
     p.lambda_J_per_s.assign(transitions, after);
-    if (binding_ >= 0) {
-      const int upto = std::clamp(points_[binding_].stage, 0, transitions);
-      for (int i = 0; i < upto; ++i) p.lambda_J_per_s[i] = before;
+    int from = 0;
+    for (std::size_t m = 0; m < before.size(); ++m) {
+      const int upto = std::clamp(points_[binding_[m]].stage, 0, transitions);
+      for (int i = from; i < upto; ++i) p.lambda_J_per_s[i] = before[m];
+      from = std::max(from, upto);
     }
     p.bands = bands_;
     p.end_moving = end_.moving;
@@ -258,7 +300,7 @@ class PartSolver {
     return p;
   }
 
-  LambdaRun evaluate(double before, double after) {
+  LambdaRun evaluate(const std::vector<double>& before, double after) {
     ++evaluations_;
     return engine_.run(prices(before, after), start_, engine_.options().resim_step_m);
   }
@@ -281,7 +323,7 @@ class PartSolver {
     return end_(run.sim) ? run.sim.running_time_s - target_s_ : kInf;
   }
 
-  // For a fixed price before the binding point (before < 0: one price everywhere), the run
+  // For fixed prices before the binding points (before empty: one price everywhere), the run
   // whose arrival is the latest allowed, or the slowest-priced run if even that arrives
   // earlier (the arrival then does not bind). ok: the arrival is within its window.
   struct Inner {
@@ -289,14 +331,14 @@ class PartSolver {
     double x_after = 0.0;
     bool ok = false;
   };
-  Inner solve_arrival(double before) {
+  Inner solve_arrival(const std::vector<double>& before) {
     Inner best;
     double best_abs = kInf;
     Inner floor_run;
     double floor_x = kInf;
     auto f = [&](double x) {
       const double after = std::exp(x);
-      LambdaRun run = evaluate(before < 0.0 ? after : before, after);
+      LambdaRun run = evaluate(before, after);
       const double err = arrival_error_s(run);
       if (finite(err) && std::abs(err) < best_abs) {
         best_abs = std::abs(err);
@@ -321,12 +363,21 @@ class PartSolver {
 
   // The last hundredths of the arrival by one switch point after from_m (when the arrival
   // binds: the run is not early by more than the search's tolerance).
+  // If the run is still late by more than the window's tolerance (no switch after from_m can
+  // make it faster, e.g. it coasts from before the last binding point to the stop), one switch
+  // anywhere is moved: the binding points are then passed a little earlier, which their latest
+  // bounds allow (an earliest bound is checked on the re-simulation like every window).
   void trim_arrival(LambdaRun& run, double from_m) {
+    auto arrival = [&](const physics::SimulationResult& sim) {
+      return sim.running_time_s - target_s_;
+    };
     if (run.sim.running_time_s > target_s_ - kArrivalTolerance_s) {
-      evaluations_ += trim_switch(
-          engine_, end_, run, from_m, engine_.route().length_m(),
-          [&](const physics::SimulationResult& sim) { return sim.running_time_s - target_s_; },
-          kTrimTolerance_s);
+      evaluations_ += trim_switch(engine_, end_, run, from_m, engine_.route().length_m(), arrival,
+                                  kTrimTolerance_s);
+    }
+    if (from_m > 0.0 && arrival(run.sim) > options_.time_tolerance_s) {
+      evaluations_ += trim_switch(engine_, end_, run, 0.0, engine_.route().length_m(), arrival,
+                                  kTrimTolerance_s);
     }
   }
 
@@ -339,18 +390,19 @@ class PartSolver {
       evaluations_ += plain.iterations;
       run = plain.run;
       ok = plain.converged;
-      lambda_before_ = lambda_after_ = run.lambda;
+      lambda_after_ = run.lambda;
       x_after_guess_ = std::log(std::max(1.0, run.lambda));
     } else {
       // A run that ends moving: the plain search ends at rest, so the one price is searched
       // here, with the end's speed band (StagePrices::end_moving).
-      Inner in = solve_arrival(-1.0);
+      Inner in = solve_arrival({});
       run = std::move(in.run);
       ok = in.ok;
-      lambda_before_ = lambda_after_ = std::exp(in.x_after);
+      lambda_after_ = std::exp(in.x_after);
       if (ok) trim_arrival(run, 0.0);
     }
-    for (int round = 0; round < 3; ++round) {
+    for (int round = 0; round < 2 + static_cast<int>(std::max<std::size_t>(1, binding_.size()));
+         ++round) {
       // Speed windows the run misses become bands.
       bool new_band = false;
       for (const auto& p : points_) {
@@ -371,80 +423,74 @@ class PartSolver {
         if (m > worst_miss) worst = static_cast<int>(k), worst_miss = m;
       }
       if (worst < 0 && !new_band) break;
-      if (worst >= 0 && binding_ >= 0 && worst != binding_) {
-        notes_.push_back(format_text(
-            "%s and %s would both bind: more than one binding passing point in a part is not "
-            "supported yet",
-            point_name(points_[binding_].index, windows_[points_[binding_].index]).c_str(),
-            point_name(points_[worst].index, windows_[points_[worst].index]).c_str()));
-        break;
-      }
-      if (worst < 0 && binding_ < 0) {
+      if (worst < 0 && binding_.empty()) {
         // Bands alone: one price, searched with them.
-        Inner in = solve_arrival(-1.0);
+        Inner in = solve_arrival({});
         run = std::move(in.run);
         ok = in.ok;
-        lambda_before_ = lambda_after_ = std::exp(in.x_after);
+        lambda_after_ = std::exp(in.x_after);
         if (ok) trim_arrival(run, 0.0);
         continue;
       }
-      if (worst >= 0) binding_ = worst;
-      const PartPoint& p = points_[binding_];
-      const double miss = time_miss_s(run, p);
-      const double bound = miss > 0.0 ? p.latest_s : miss < 0.0 ? p.earliest_s : bound_s_;
-      bound_s_ = bound;
-      LambdaRun best;
-      double best_abs = kInf;
-      bool best_ok = false;
-      double best_before = 0.0, best_after = 0.0;
-      auto g = [&](double x) {
-        Inner in = solve_arrival(std::exp(x));
-        const Passing at = passing_at(in.run.sim.trace, p.s_m);
-        if (!in.ok || !finite(at.t_s)) return kInf;
-        const double err = at.t_s - bound;
-        if (std::abs(err) < best_abs) {
-          best_abs = std::abs(err);
-          best = std::move(in.run);
-          best_ok = true;
-          best_before = std::exp(x);
-          best_after = std::exp(in.x_after);
-        }
-        return err;
-      };
-      falling_root(g, std::log(std::max(1.0, lambda_before_)), 0.3, 0.0, 30.0, kOuterBudget,
-                   kPassingTolerance_s);
-      if (!best_ok) {
-        notes_.push_back(format_text("the price search for %s found no run that meets it",
-                                     point_name(p.index, windows_[p.index]).c_str()));
+      if (worst >= 0 && !add_binding(worst)) {
         ok = false;
         break;
       }
-      run = std::move(best);
-      ok = best_ok;
-      lambda_before_ = best_before;
-      lambda_after_ = best_after;
-      // The last hundredths by switch points (first-order neutral at the optimum): one before
-      // the point for its passing time, then one after it for the arrival (if it binds).
-      const double s_k = p.s_m;
-      evaluations_ += trim_switch(
-          engine_, end_, run, 0.0, s_k,
-          [&](const physics::SimulationResult& sim) {
-            return passing_at(sim.trace, s_k).t_s - bound;
-          },
-          kTrimTolerance_s);
-      trim_arrival(run, s_k);
+      // Each binding point binds at the bound its run misses (or the one it was given).
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        const PartPoint& p = points_[binding_[m]];
+        const double miss = time_miss_s(run, p);
+        if (miss != 0.0) bound_s_[m] = miss > 0.0 ? p.latest_s : p.earliest_s;
+      }
+      if (!meet_bindings(run)) {
+        ok = false;
+        break;
+      }
+      ok = true;
+      // The last hundredths by switch points (first-order neutral at the optimum): for each
+      // binding point in turn one between the binding point before it and it (later points
+      // shift with it and are trimmed next), then one after the last for the arrival.
+      double lo = 0.0;
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        const double s_k = points_[binding_[m]].s_m, bound = bound_s_[m];
+        if (binding_.size() == 1) {  // several: see search_target_s
+          evaluations_ += trim_switch(
+              engine_, end_, run, lo, s_k,
+              [&](const physics::SimulationResult& sim) {
+                return passing_at(sim.trace, s_k).t_s - bound;
+              },
+              kTrimTolerance_s);
+        }
+        lo = s_k;
+      }
+      trim_arrival(run, lo);
     }
-    if (binding_ >= 0 && ok) {
-      const PartPoint& p = points_[binding_];
-      const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_);
-      if (off > options_.time_tolerance_s) {
-        // Inside the window but not at the bound the unconstrained run missed: feasible, and
-        // possibly not the least energy (the prices could not be set closer on this grid).
-        notes_.push_back(format_text(
-            "the price search for %s ended %.2f s from its %s bound: every window can hold, but "
-            "the run may not be the least-energy one",
-            point_name(p.index, windows_[p.index]).c_str(), off,
-            bound_s_ == p.latest_s ? "latest" : "earliest"));
+    mark_inactive(run);
+    if (ok) {
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        if (inactive(m)) continue;
+        const PartPoint& p = points_[binding_[m]];
+        const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_[m]);
+        const double allowed =
+            binding_.size() == 1 ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
+        if (off > allowed) {
+          // Inside the window but not at the bound the unconstrained run missed: feasible, and
+          // possibly not the least energy (the prices could not be set closer on this grid).
+          notes_.push_back(format_text(
+              "the price search for %s ended %.2f s from its %s bound: every window can hold, "
+              "but the run may not be the least-energy one",
+              point_name(p.index, windows_[p.index]).c_str(), off,
+              bound_s_[m] == p.latest_s ? "latest" : "earliest"));
+        }
+        // A latest bound is held by a dearer second before the point, an earliest one by a
+        // cheaper one; the other sign means the window need not bind (a multiplier < 0).
+        const int sign = binding_sign(binding_[m]);
+        if (binding_.size() > 1 && (sign > 0) != (bound_s_[m] == p.latest_s)) {
+          notes_.push_back(format_text(
+              "%s binds with a multiplier of the wrong sign: every window holds, but the run "
+              "may not be the least-energy one",
+              point_name(p.index, windows_[p.index]).c_str()));
+        }
       }
     }
     *met = ok;
@@ -452,6 +498,103 @@ class PartSolver {
   }
 
  private:
+  // Adds points_[k] to the binding set (kept in order along the part), its price starting at
+  // the price its stretch has now, so the prices do not change. False (with a note) when the
+  // point shares its grid stage with a binding point (no price can part them).
+  bool add_binding(int k) {
+    if (std::find(binding_.begin(), binding_.end(), k) != binding_.end()) return true;
+    for (int b : binding_) {
+      if (points_[b].stage == points_[k].stage) {
+        notes_.push_back(format_text(
+            "%s and %s lie on one grid stage: their windows cannot both be priced (use a finer "
+            "--ds)",
+            point_name(points_[b].index, windows_[points_[b].index]).c_str(),
+            point_name(points_[k].index, windows_[points_[k].index]).c_str()));
+        return false;
+      }
+    }
+    const double price = stretch_price(k);
+    const auto at = std::lower_bound(binding_.begin(), binding_.end(), k) - binding_.begin();
+    binding_.insert(binding_.begin() + at, k);
+    before_.insert(before_.begin() + at, price);
+    bound_s_.insert(bound_s_.begin() + at, 0.0);
+    return true;
+  }
+
+  // The price before binding point m searched for its passing time, the others held; run and
+  // the prices are set to the best run found. False (with a note) when no run meets it.
+  bool search_price(std::size_t m, LambdaRun& run) {
+    const PartPoint& p = points_[binding_[m]];
+    const double bound = search_target_s(m);
+    LambdaRun best;
+    double best_abs = kInf;
+    bool best_ok = false;
+    double best_before = 0.0, best_after = 0.0;
+    std::vector<double> before = before_;
+    auto g = [&](double x) {
+      before[m] = std::exp(x);
+      Inner in = solve_arrival(before);
+      const Passing at = passing_at(in.run.sim.trace, p.s_m);
+      if (!in.ok || !finite(at.t_s)) return kInf;
+      const double err = at.t_s - bound;
+      if (std::abs(err) < best_abs) {
+        best_abs = std::abs(err);
+        best = std::move(in.run);
+        best_ok = true;
+        best_before = std::exp(x);
+        best_after = std::exp(in.x_after);
+      }
+      return err;
+    };
+    falling_root(g, std::log(std::max(1.0, before_[m])), 0.3, 0.0, 30.0, kOuterBudget,
+                 passing_tolerance_s());
+    if (!best_ok) {
+      notes_.push_back(format_text("the price search for %s found no run that meets it",
+                                   point_name(p.index, windows_[p.index]).c_str()));
+      return false;
+    }
+    run = std::move(best);
+    before_[m] = best_before;
+    lambda_after_ = best_after;
+    return true;
+  }
+
+  // With several binding points, no switch-point trim closes their last tenths (a switch
+  // between two of them changes the speed at the later one, and the run after it by seconds),
+  // so each is searched for a time kInside_s inside its bound, within kInside_s: it passes
+  // within 2 kInside_s of its bound, inside its window. One binding point: at its bound, within
+  // kPassingTolerance_s, and trimmed.
+  double search_target_s(std::size_t m) const {
+    if (binding_.size() == 1) return bound_s_[m];
+    const PartPoint& p = points_[binding_[m]];
+    return bound_s_[m] == p.latest_s ? bound_s_[m] - kInside_s : bound_s_[m] + kInside_s;
+  }
+  double passing_tolerance_s() const {
+    return binding_.size() == 1 ? kPassingTolerance_s : kInside_s;
+  }
+
+  // Every binding point's price searched for its time: one root search for one point; for
+  // several, cycles of one search per point (skipping those already within the tolerance)
+  // until all are within it.
+  bool meet_bindings(LambdaRun& run) {
+    const std::size_t k = binding_.size();
+    auto within = [&](std::size_t m) {
+      const double t = passing_at(run.sim.trace, points_[binding_[m]].s_m).t_s;
+      return finite(t) && std::abs(t - search_target_s(m)) <= passing_tolerance_s();
+    };
+    const int cycles = k > 1 ? kMaxCycles : 1;
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      for (std::size_t m = 0; m < k; ++m) {
+        if (k > 1 && within(m)) continue;
+        if (!search_price(m, run)) return false;
+      }
+      bool all = true;
+      for (std::size_t m = 0; m < k; ++m) all = all && within(m);
+      if (all) break;
+    }
+    return true;
+  }
+
   // The price searches stop within a few tenths (the running time is ragged on a grid); the
   // switch-point trims close the rest to kTrimTolerance_s.
   static constexpr double kArrivalTolerance_s = 0.25;
@@ -459,6 +602,8 @@ class PartSolver {
   static constexpr double kTrimTolerance_s = 0.01;
   static constexpr int kInnerBudget = 40;
   static constexpr int kOuterBudget = 25;
+  static constexpr int kMaxCycles = 6;  // of the searches for several binding points
+  static constexpr double kInside_s = 0.1;
 
   const SectionEngine& engine_;
   StartState start_;
@@ -470,9 +615,13 @@ class PartSolver {
   const TimingJourneyOptions& options_;
   std::vector<SpeedBand> bands_;
   std::vector<std::string> notes_;
-  int binding_ = -1;  // index into points_ of the binding passing point
-  double bound_s_ = 0.0;
-  double lambda_before_ = 0.0, lambda_after_ = 0.0;
+  // The binding passing points (indices into points_, in order along the part), the bound each
+  // meets and the price of the stretch ending at it; lambda_after_ after the last of them.
+  std::vector<int> binding_;
+  std::vector<bool> inactive_;  // per binding point (see inactive())
+  std::vector<double> bound_s_;
+  std::vector<double> before_;
+  double lambda_after_ = 0.0;
   double x_after_guess_ = std::log(3e5);
   int evaluations_ = 0;
 };
@@ -723,7 +872,8 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   bool all_met = true;
   bool all_arrive = true;
   std::vector<std::vector<PartPoint>> part_points(bounds.size());
-  std::vector<int> binding_sign(bounds.size(), 0), binding_point(bounds.size(), -1);
+  std::vector<int> binding_sign(n, 0);     // per timing point
+  std::vector<double> bind_slack(n, 0.0);  // how far inside its bound a binding point may pass
   for (std::size_t j = 0; j < bounds.size(); ++j) {
     TimingPart& part = out.parts[j];
     const SectionEngine& engine = *engines[j];
@@ -765,15 +915,15 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
     all_arrive = all_arrive && ends[j].reaches_end(run.sim);
     all_met = all_met && met;
     for (const auto& note : solver->notes()) out.summary.warnings.push_back(note);
-    // Prices of the stretches, first to last: lambda_before up to the binding point.
-    const int binding = solver->binding();
+    // Prices of the stretches, first to last, and the sign of each binding point's multiplier
+    // (+1 its latest bound binds, -1 its earliest).
     for (int k = 0; k <= static_cast<int>(points.size()); ++k) {
-      part.stretch_lambda_J_per_s.push_back(k <= binding ? solver->lambda_before()
-                                                         : solver->lambda_after());
+      part.stretch_lambda_J_per_s.push_back(solver->stretch_price(k));
+      if (k < static_cast<int>(points.size())) {
+        binding_sign[points[k].index] = solver->binding_sign(k);
+        bind_slack[points[k].index] = solver->binding_slack_s();
+      }
     }
-    // The sign of the binding point's multiplier: +1 its latest bound binds, -1 its earliest.
-    binding_sign[j] = binding < 0 ? 0 : solver->lambda_before() > solver->lambda_after() ? 1 : -1;
-    binding_point[j] = binding < 0 ? -1 : points[binding].index;
 
     if (ends[j].moving && ends[j].reaches_end(run.sim) && run.sim.end_speed_ms > 0.0) {
       // The simulator reports a moving end's stop error as where full braking would bring it
@@ -800,8 +950,8 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   for (std::size_t j = 0; j < bounds.size(); ++j) {
     const TimingPart& part = out.parts[j];
     const auto& sim = out.journey.sections[j].run.sim;
-    auto record = [&](int i, double t, double v, bool departure_point, bool arrival_point,
-                      int sign) {
+    auto record = [&](int i, double t, double v, bool departure_point, bool arrival_point, int sign,
+                      double slack_s = 0.0) {
       WindowResult& r = out.windows[i];
       const TimingWindow& w = windows[i];
       r.window = w;
@@ -810,11 +960,12 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
       r.met = finite(t) && t >= w.earliest_s - tol_t && t <= w.latest_s + tol_t &&
               v >= w.min_speed_ms - tol_v && v <= w.max_speed_ms + tol_v;
       r.binds.clear();
-      if (finite(w.earliest_s) && std::abs(t - w.earliest_s) <= tol_t &&
+      if (finite(w.earliest_s) && std::abs(t - w.earliest_s) <= tol_t + slack_s &&
           (departure_point || sign < 0)) {
         r.binds.push_back("earliest");
       }
-      if (finite(w.latest_s) && std::abs(t - w.latest_s) <= tol_t && (arrival_point || sign > 0)) {
+      if (finite(w.latest_s) && std::abs(t - w.latest_s) <= tol_t + slack_s &&
+          (arrival_point || sign > 0)) {
         r.binds.push_back("latest");
       }
       if (!w.is_stop()) {
@@ -830,8 +981,8 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
     record(part.first_point, part.departure_s, starts[j].speed_ms, true, false, 0.0);
     for (const PartPoint& p : part_points[j]) {
       const Passing at = passing_at(sim.trace, p.s_m);
-      record(p.index, part.departure_s + at.t_s, at.v_ms, false, false,
-             p.index == binding_point[j] ? binding_sign[j] : 0);
+      record(p.index, part.departure_s + at.t_s, at.v_ms, false, false, binding_sign[p.index],
+             bind_slack[p.index]);
     }
     const bool arrives = ends[j].reaches_end(sim);
     record(part.last_point, arrives ? part.departure_s + sim.running_time_s : NAN,

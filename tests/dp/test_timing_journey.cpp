@@ -189,6 +189,75 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
   EXPECT_LE(rest_traction, rest_opt * 1.01 + 1e4) << rest_traction << " vs " << rest_opt;
 }
 
+// Two passing windows that both bind at their latest bounds (each below the unconstrained
+// run's passing time, the second by more than the first saves): met in the re-simulation, each
+// reported as binding, and no run of a lattice of three prices (before the first point, between
+// the points, after the second) that meets all windows is cheaper than the solver's run.
+TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TimeSearchResult ref = plain(train, track, 240.0);
+  ASSERT_TRUE(ref.converged);
+  auto time_at = [](const physics::SimulationResult& sim, double s) {
+    for (const auto& p : sim.trace) {
+      if (p.s_m >= s) return p.t_s;
+    }
+    return kOpen;
+  };
+  const double latest1 = std::floor(time_at(ref.run.sim, 1000.0) - 10.0);
+  const double latest2 = std::floor(time_at(ref.run.sim, 2000.0) - 12.0);
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1000, 0, latest1),
+                                       pass_at(2000, 0, latest2), stop_at(3000, 200, 240)};
+  const TimingJourneyOptions options = coarse();
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, options, "two");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  // Each passes within 0.2 s inside its bound (the search's documented band).
+  for (int i : {1, 2}) {
+    const double latest = i == 1 ? latest1 : latest2;
+    EXPECT_LE(sol.windows[i].time_s, latest + options.time_tolerance_s) << i;
+    EXPECT_GE(sol.windows[i].time_s, latest - 0.2 - options.time_tolerance_s) << i;
+    ASSERT_EQ(sol.windows[i].binds.size(), 1u) << i;
+    EXPECT_EQ(sol.windows[i].binds[0], "latest") << i;
+  }
+  const double energy = sol.journey.sections.at(0).run.sim.energy.traction_work_J;
+  const std::vector<double>& found = sol.parts.at(0).stretch_lambda_J_per_s;
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_GT(found[0], found[1]);  // latest bounds: a dearer second before each point
+  EXPECT_GT(found[1], found[2]);
+
+  // The lattice: wide (factors of 1.8) and around the solver's own prices (+-15 %).
+  const SectionEngine engine(train, track, options.engine);
+  const int stage1 = static_cast<int>(std::lround(1000.0 / options.engine.grid.ds_m));
+  const int stage2 = static_cast<int>(std::lround(2000.0 / options.engine.grid.ds_m));
+  double best_scan = kOpen;
+  auto scan = [&](double p1, double p2, double p3) {
+    StagePrices p;
+    p.lambda_J_per_s.assign(engine.grid().stage_count() - 1, p3);
+    for (int i = 0; i < stage2; ++i) p.lambda_J_per_s[i] = i < stage1 ? p1 : p2;
+    const LambdaRun r = engine.run(p, {}, 0.5);
+    if (!run_arrives(r.sim) || r.sim.running_time_s > 240.0 + options.time_tolerance_s ||
+        r.sim.running_time_s < 200.0 ||
+        time_at(r.sim, 1000.0) > latest1 + options.time_tolerance_s ||
+        time_at(r.sim, 2000.0) > latest2 + options.time_tolerance_s) {
+      return;
+    }
+    best_scan = std::min(best_scan, r.sim.energy.traction_work_J);
+  };
+  for (double p1 = 3e5; p1 <= 3e6; p1 *= 1.8) {
+    for (double p2 = 2e5; p2 <= 3e6; p2 *= 1.8) {
+      for (double p3 = 1e5; p3 <= 1.5e6; p3 *= 1.8) scan(p1, p2, p3);
+    }
+  }
+  for (double f1 : {0.85, 0.93, 1.0, 1.07, 1.15}) {
+    for (double f2 : {0.85, 0.93, 1.0, 1.07, 1.15}) {
+      for (double f3 : {0.85, 1.0, 1.15}) scan(f1 * found[0], f2 * found[1], f3 * found[2]);
+    }
+  }
+  ASSERT_TRUE(std::isfinite(best_scan));
+  EXPECT_LE(energy, best_scan * (1.0 + 2e-3)) << energy << " vs scan " << best_scan;
+}
+
 TEST(TimingJourney, ABindingEarliestWindowIsMet) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
