@@ -135,9 +135,10 @@ class SectionEngine {
   mutable std::once_flag table_once_;
   mutable std::once_flag flat_out_once_;
   mutable physics::SimulationResult flat_out_;
-  // The last extracted program's run (run_from): the next one resumes from it up to where the
-  // two programs first differ (close prices extract programs that agree over a prefix, often
-  // the whole traction phase). The result does not depend on which run it resumes from.
+  // The last extracted program's run (run_from), up to its second switch
+  // (physics::resume_prefix): the next one resumes from it up to where the two programs first
+  // differ (close prices extract programs that agree over a prefix, at least the start of the
+  // traction phase). The result does not depend on which run it resumes from.
   mutable std::mutex resume_mutex_;
   mutable std::shared_ptr<const physics::SimulationResult> resume_base_;
 };
