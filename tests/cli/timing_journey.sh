@@ -139,6 +139,24 @@ assert w[1]["binds"] == "latest", w[1]
 assert w[1]["speed_kmh"] >= 10.0, w[1]
 assert w[5]["time_s"] <= 1450.05 and w[5]["speed_kmh"] == 0.0, w[5]
 PY
+  # The relaxed journey ending at 3.6 km/h (1 m/s, as other solvers end): met, at that speed,
+  # no dearer than ending at rest, and a run reported converged is one whose windows hold.
+  python3 - "$src/data/ttobench/CH_StGallen_Wil_Journey_01_relaxed.json" <<'PY' > relaxed_end.json || fail=1
+import json, sys
+j = json.load(open(sys.argv[1]))
+j["timing points"]["values"][5][3:5] = [3.6, 3.6]
+print(json.dumps(j))
+PY
+  "$ecorail" solve "${stgw[@]}" --journey relaxed_end.json --json relaxed_end_out.json > /dev/null \
+    2> err.txt || { echo "FAIL: relaxed journey ending at 3.6 km/h"; cat err.txt; fail=1; }
+  python3 - relaxed_end_out.json relaxed.json <<'PY' || fail=1
+import json, sys
+j, rest = (json.load(open(f)) for f in sys.argv[1:])
+assert j["windows_met"] is True and j["converged"] is True, (j["windows_met"], j["converged"])
+end = j["windows"][5]
+assert abs(end["speed_kmh"] - 3.6) <= 0.1 and 1400 - 0.05 <= end["time_s"] <= 1450.05, end
+assert j["traction_energy_kJ"] <= rest["traction_energy_kJ"] * 1.002, (j["traction_energy_kJ"], rest["traction_energy_kJ"])
+PY
 fi
 
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
