@@ -1,5 +1,7 @@
 #include "dp/cruise_polish.hpp"
 
+#include "dp/golden_section.hpp"
+
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -243,25 +245,12 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
     };
     // Golden section on the coasting point (the energy along the time constraint is unimodal
     // around the optimum; an infeasible point scores +inf and moves the bracket away from it).
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double a = c_min, b = c_max;
-    double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = cost_at(x1), f2 = cost_at(x2);
-    while (b - a > options.search_tolerance_m) {
-      if (f1 <= f2) {
-        b = x2, x2 = x1, f2 = f1;
-        x1 = b - g * (b - a);
-        f1 = cost_at(x1);
-      } else {
-        a = x1, x1 = x2, f1 = f2;
-        x2 = a + g * (b - a);
-        f2 = cost_at(x2);
-      }
-    }
-    const double f_best = std::min(f1, f2);
-    if (!std::isfinite(f_best)) continue;
-    current[exit].from_m = f1 <= f2 ? x1 : x2;
-    best_cost = f_best;
+    const GoldenSectionResult g =
+        golden_section_minimum(cost_at, c_min, c_max, options.search_tolerance_m,
+                               std::numeric_limits<int>::max(), /*ties_go_left=*/true);
+    if (!std::isfinite(g.f)) continue;
+    current[exit].from_m = g.x;
+    best_cost = g.f;
   }
   if (!std::isfinite(best_cost)) return report;
   const double c_best = current[shape->exit].from_m;

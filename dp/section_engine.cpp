@@ -51,17 +51,7 @@ const EngineOptions& validated(const EngineOptions& options, const physics::Trai
 
 SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
                              const EngineOptions& options)
-    : train_(train),
-      route_(route),
-      options_(validated(options, train, route)),
-      envelope_(train_, route_, options.envelope_resolution_m),
-      motion_(train_, route_, envelope_),
-      grid_(envelope_, route_.length_m(), options.grid) {
-  if (options_.keep_transitions) {
-    const ThreadScope threads(options_.threads);
-    table_ = build_table();
-  }
-}
+    : SectionEngine(train, route, options, route) {}
 
 SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& route,
                              const EngineOptions& options, const physics::Route& envelope_route)

@@ -196,20 +196,26 @@ SimulationResult simulate(const Motion& motion, const ControlLaw& law,
   return out;
 }
 
+namespace {
+// What a later run must share with this one to resume from its checkpoints.
+void mark_resumable(const Motion& motion, const ControlProgram& program,
+                    const SimulationOptions& opt, SimulationResult& out) {
+  out.checkpoint_program = program;
+  out.checkpoint_motion = &motion;
+  out.checkpoint_step_m = opt.step_m;
+  out.checkpoint_rk_order = opt.rk_order;
+  out.checkpoint_start_speed_ms = opt.start_speed_ms;
+  out.checkpoint_start_position_m = opt.start_position_m;
+}
+}  // namespace
+
 SimulationResult simulate(const Motion& motion, const ControlProgram& program,
                           const SimulationOptions& opt) {
   const std::vector<double> events = events_of(motion.route(), program_breakpoints(program));
   SimulationResult out = start_result(motion.route(), opt, events.size());
   out.trace.push_back({0.0, opt.start_position_m, opt.start_speed_ms, 0.0, 0.0, Regime::Coast});
   const bool resumable = !opt.speed_cap;
-  if (resumable) {
-    out.checkpoint_program = program;
-    out.checkpoint_motion = &motion;
-    out.checkpoint_step_m = opt.step_m;
-    out.checkpoint_rk_order = opt.rk_order;
-    out.checkpoint_start_speed_ms = opt.start_speed_ms;
-    out.checkpoint_start_position_m = opt.start_position_m;
-  }
+  if (resumable) mark_resumable(motion, program, opt, out);
   ProgramLaw law(program);
   run(motion, law, events, opt, start_of(opt), resumable, out);
   return out;
@@ -250,12 +256,7 @@ SimulationResult simulate(const Motion& motion, const ControlProgram& program,
                    earlier.trace.begin() + static_cast<std::ptrdiff_t>(cp.trace_size));
   out.energy = cp.energy;
   out.max_overspeed_ms = cp.max_overspeed_ms;
-  out.checkpoint_program = program;
-  out.checkpoint_motion = &motion;
-  out.checkpoint_step_m = opt.step_m;
-  out.checkpoint_rk_order = opt.rk_order;
-  out.checkpoint_start_speed_ms = opt.start_speed_ms;
-  out.checkpoint_start_position_m = opt.start_position_m;
+  mark_resumable(motion, program, opt, out);
   out.checkpoints.assign(earlier.checkpoints.begin(),
                          earlier.checkpoints.begin() + static_cast<std::ptrdiff_t>(j - 1));
   RunStart from;

@@ -1,5 +1,7 @@
 #include "timetable/pair_bound.hpp"
 
+#include "dp/golden_section.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -120,25 +122,10 @@ PairBound used_regen_bound(const PowerProfile& profile, const FleetProblem& pr) 
     return *std::max_element(v.begin(), v.end()) + mu * pr.span_s;
   };
   // The dual is convex in mu: golden-section search over a bracket wide enough for any slope.
-  double a = -2e7, b = 2e7;
-  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = dual(c), fd = dual(d);
-  double best = std::min(fc, fd), best_mu = fc < fd ? c : d;
-  for (int it = 0; it < 60 && b - a > 1.0; ++it) {
-    if (fc < fd) {
-      b = d, d = c, fd = fc;
-      c = b - g * (b - a);
-      fc = dual(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + g * (b - a);
-      fd = dual(d);
-    }
-    if (std::min(fc, fd) < best) best = std::min(fc, fd), best_mu = fc < fd ? c : d;
-  }
-  out.bound_used_J = out.self_J + best;
-  out.mu_J_per_s = best_mu;
+  const dp::GoldenSectionResult g =
+      dp::golden_section_minimum(dual, -2e7, 2e7, 1.0, 60, /*ties_go_left=*/false);
+  out.bound_used_J = out.self_J + g.best_f;
+  out.mu_J_per_s = g.best_x;
   return out;
 }
 
