@@ -170,11 +170,11 @@ void falling_root(F f, double x0, double step, double x_min, double x_max, int b
 // Returns the evaluations used.
 template <typename Error>
 int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun& run, double lo_m,
-                double hi_m, Error error, double tol_s) {
+                double hi_m, Error error, double tol_s, double max_trim_s = kMaxTrim_s) {
   int used = 0;
   // Only a last correction: a larger miss is the price search's to close, not a switch's.
   const double miss = std::abs(error(run.sim));
-  if (miss <= tol_s || !(miss <= kMaxTrim_s)) return used;
+  if (miss <= tol_s || !(miss <= max_trim_s)) return used;
   const physics::ControlProgram program = run.program;
   const double length = engine.route().length_m();
 
@@ -471,6 +471,7 @@ class PartSolver {
       }
       trim_arrival(run, lo);
     }
+    if (ok && binding_.size() == 1 && !end_.moving) close_gap(run);
     mark_inactive(run);
     if (ok) {
       for (std::size_t m = 0; m < binding_.size(); ++m) {
@@ -479,7 +480,11 @@ class PartSolver {
         const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_[m]);
         const double allowed =
             binding_.size() == 1 ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
-        if (off > allowed) {
+        // (A run outside the window is reported as missing it, on the re-simulation.)
+        const double t = passing_at(run.sim.trace, p.s_m).t_s;
+        const bool inside = t >= p.earliest_s - options_.time_tolerance_s &&
+                            t <= p.latest_s + options_.time_tolerance_s;
+        if (off > allowed && inside) {
           // Inside the window but not at the bound the unconstrained run missed: feasible, and
           // possibly not the least energy (the prices could not be set closer on this grid).
           notes_.push_back(format_text(
@@ -517,6 +522,63 @@ class PartSolver {
   }
 
  private:
+  // One binding point whose search ended away from its bound (the passing time jumps between
+  // neighbouring prices, e.g. a stretch priced so low that a coast appears or vanishes, and
+  // the run is seconds inside its window or a few tenths outside it): one switch before the
+  // point is moved, however far, so the run passes at the bound, and the rest of the run from
+  // there is re-solved from the state it passes in for the time left (the plain search from a
+  // restart: the optimum of the rest, whatever came before). The stitched program is
+  // re-simulated from the start and kept when it reaches its stop at the latest arrival and
+  // passes the point at its bound, and either the run before missed the window or the
+  // stitched one costs less.
+  void close_gap(LambdaRun& run) {
+    const PartPoint& p = points_[binding_[0]];
+    const double bound = bound_s_[0];
+    const double s_k = p.s_m;
+    const double off = passing_at(run.sim.trace, s_k).t_s - bound;
+    if (!(std::abs(off) > options_.time_tolerance_s)) return;
+    LambdaRun trimmed = run;
+    evaluations_ += trim_switch(
+        engine_, end_, trimmed, 0.0, s_k,
+        [&](const physics::SimulationResult& sim) {
+          return passing_at(sim.trace, s_k).t_s - bound;
+        },
+        kTrimTolerance_s, std::abs(off) + kMaxTrim_s);
+    const Passing at = passing_at(trimmed.sim.trace, s_k);
+    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return;
+    TimeSearchResult rest;
+    try {
+      rest = solve_for_time(engine_, target_s_ - at.t_s, TimeSearchOptions{}, {s_k, at.v_ms});
+    } catch (const TimeRequestError&) {
+      return;  // the time left is outside what the rest can run
+    }
+    evaluations_ += rest.iterations;
+    if (!rest.converged) return;
+    physics::ControlProgram stitched;
+    for (const auto& step : trimmed.program) {
+      if (step.from_m < s_k) stitched.push_back(step);
+    }
+    for (const auto& step : rest.run.program) {
+      if (step.from_m >= s_k - 1e-9) stitched.push_back(step);
+    }
+    // The run as it is misses the window (early for an earliest bound, late for a latest one):
+    // any feasible stitched run replaces it; otherwise only a cheaper one.
+    const bool run_misses = off < 0.0 ? bound == p.earliest_s : bound == p.latest_s;
+    LambdaRun out = run;
+    out.program = simplify_program(stitched, 0.0);
+    out.sim = engine_.simulate(out.program, start_);
+    ++evaluations_;
+    out.cost_J = engine_.energy_cost_J(out.sim);
+    const Passing now = passing_at(out.sim.trace, s_k);
+    if (!end_(out.sim) || !(std::abs(out.sim.running_time_s - target_s_) <= kArrivalTolerance_s) ||
+        !(std::abs(now.t_s - bound) <= options_.time_tolerance_s) ||
+        !(run_misses || out.cost_J < run.cost_J)) {
+      return;
+    }
+    trim_arrival(out, s_k);
+    run = std::move(out);
+  }
+
   // Adds points_[k] to the binding set (kept in order along the part), its price starting at
   // the price its stretch has now, so the prices do not change. False (with a note) when the
   // point shares its grid stage with a binding point (no price can part them).
