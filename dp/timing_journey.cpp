@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "dp/golden_section.hpp"
 #include "dp/lambda_bracket.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
@@ -913,8 +914,10 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
 
   // Times of the parts: depart at the earliest allowed, arrive at the latest allowed (energy
   // falls with running time). Where an arrival window reaches past the next departure's
-  // earliest time, the part arrives at that time (dwell 0 unless the run is slower) and a
-  // warning says the split between the two parts was not optimised.
+  // earliest time (overlapping windows, or one window at a one-point stop), the part arrives
+  // at that time for now (dwell 0 unless the run is slower); the split of time between the two
+  // parts is then optimised below.
+  std::vector<char> overlaps(bounds.size(), 0);
   double departure = departure0;
   for (std::size_t j = 0; j < bounds.size(); ++j) {
     const TimingWindow& arr = windows[bounds[j].last];
@@ -930,10 +933,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
       }
       if (finite(dep.earliest_s) && dep.earliest_s < arrival) {
         arrival = std::max(dep.earliest_s, earliest[bounds[j].last]);
-        out.summary.warnings.push_back(format_text(
-            "the arrival and departure windows at %.1f m overlap: the part arrives at %.1f s; "
-            "the split of time between the parts beside it is not optimised",
-            arr.position_m, arrival));
+        overlaps[j] = 1;
       }
     }
     TimingPart part;
@@ -950,6 +950,82 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
     }
   }
 
+  // The passing points of part j, relative to a departure at departure_s.
+  auto points_of = [&](std::size_t j, double departure_s) {
+    const SectionEngine& engine = *engines[j];
+    std::vector<PartPoint> points;
+    for (int i = bounds[j].first + 1; i < bounds[j].last; ++i) {
+      PartPoint p;
+      p.index = i;
+      p.s_m = windows[i].position_m - windows[bounds[j].first].position_m;
+      p.stage = std::clamp(static_cast<int>(std::lround(p.s_m / engine.options().grid.ds_m)), 0,
+                           engine.grid().stage_count() - 1);
+      p.earliest_s = windows[i].earliest_s - departure_s;
+      p.latest_s = windows[i].latest_s - departure_s;
+      points.push_back(p);
+    }
+    return points;
+  };
+  // The energy cost of part j between two times; +inf where it misses a window or its time.
+  auto part_cost_J = [&](std::size_t j, double departure_s, double arrival_s) {
+    if (!(arrival_s > departure_s)) return kInf;
+    PartSolver solver(*engines[j], starts[j], ends[j], arrival_s - departure_s,
+                      windows[bounds[j].last].earliest_s - departure_s, points_of(j, departure_s),
+                      windows, options);
+    try {
+      bool met = false;
+      const LambdaRun run = solver.solve(&met);
+      return met && ends[j].reaches_end(run.sim) ? run.cost_J : kInf;
+    } catch (const TimeRequestError&) {
+      return kInf;
+    }
+  };
+
+  // The best split at a stop whose windows overlap. Its time x is both the arrival of the part
+  // before and the departure of the part after: an arrival before the departure would only
+  // take time from one of the two parts, so the stop is left at once. Each part's least
+  // energy falls and is convex in its running time, so the pair's energy is unimodal in x:
+  // golden section over the times both windows and the next part's flat-out run allow, stop
+  // by stop from the first (a later stop sees the departure chosen before it). The earliest
+  // time (the rule without this search) is evaluated too, and the search's x is taken only
+  // where it is cheaper.
+  constexpr double kSplitTolerance_s = 0.5;
+  constexpr int kSplitSteps = 12;
+  for (std::size_t j = 0; j + 1 < bounds.size(); ++j) {
+    if (!overlaps[j]) continue;
+    TimingPart& before = out.parts[j];
+    TimingPart& after = out.parts[j + 1];
+    const double lo = before.arrival_target_s;
+    const double hi = std::min(
+        {windows[bounds[j].last].latest_s, windows[bounds[j + 1].first].latest_s,
+         after.arrival_target_s - engines[j + 1]->min_time_run(starts[j + 1]).running_time_s});
+    std::string how = "not optimised (the later bound is open)";
+    if (finite(hi) && hi > lo + kSplitTolerance_s) {
+      auto pair_cost = [&](double x) {
+        const double first = part_cost_J(j, before.departure_s, x);
+        return finite(first) ? first + part_cost_J(j + 1, x, after.arrival_target_s) : kInf;
+      };
+      const GoldenSectionResult g = golden_section_minimum(pair_cost, lo, hi, kSplitTolerance_s,
+                                                           kSplitSteps, /*ties_go_left=*/true);
+      const double at_lo = pair_cost(lo);
+      if (finite(g.best_f) && g.best_f < at_lo) {
+        before.arrival_target_s = after.departure_s = g.best_x;
+        how = format_text(
+            "chosen by golden section in [%.1f, %.1f] s to %.1f s, %.1f kJ less "
+            "than at its earliest time",
+            lo, hi, kSplitTolerance_s, units::J_to_kJ(at_lo - g.best_f));
+      } else {
+        how = format_text("chosen by golden section in [%.1f, %.1f] s: its earliest time", lo, hi);
+      }
+    } else if (finite(hi)) {
+      how = format_text("its earliest time (the windows leave %.1f s)", std::max(0.0, hi - lo));
+    }
+    out.summary.warnings.push_back(format_text(
+        "the arrival and departure windows at %.1f m overlap: the stop is at %.1f s (dwell 0), "
+        "%s",
+        windows[bounds[j].last].position_m, before.arrival_target_s, how.c_str()));
+  }
+
   // Solve each part.
   bool all_met = true;
   bool all_arrive = true;
@@ -959,17 +1035,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   for (std::size_t j = 0; j < bounds.size(); ++j) {
     TimingPart& part = out.parts[j];
     const SectionEngine& engine = *engines[j];
-    std::vector<PartPoint> points;
-    for (int i = part.first_point + 1; i < part.last_point; ++i) {
-      PartPoint p;
-      p.index = i;
-      p.s_m = windows[i].position_m - part.start_m;
-      p.stage = std::clamp(static_cast<int>(std::lround(p.s_m / engine.options().grid.ds_m)), 0,
-                           engine.grid().stage_count() - 1);
-      p.earliest_s = windows[i].earliest_s - part.departure_s;
-      p.latest_s = windows[i].latest_s - part.departure_s;
-      points.push_back(p);
-    }
+    const std::vector<PartPoint> points = points_of(j, part.departure_s);
     const double target = part.arrival_target_s - part.departure_s;
     const double earliest_arrival = windows[part.last_point].earliest_s - part.departure_s;
     auto solver = std::make_unique<PartSolver>(engine, starts[j], ends[j], target, earliest_arrival,

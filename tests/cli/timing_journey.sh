@@ -177,5 +177,26 @@ assert j["traction_energy_kJ"] <= rest["traction_energy_kJ"] * 1.002, (j["tracti
 PY
 fi
 
+# A stop given as one point with one time window: the stop's time is chosen inside it (no
+# dwell), the warning says so, the journey is no dearer than with the stop pinned to the
+# window's earliest time (the rule before the search), and by symmetry the stop is mid-time.
+journey onestop.json '[[0,0,0,0,0],[1500,100,130,0,0],[3000,230,230,0,0]]'
+journey pinned.json '[[0,0,0,0,0],[1500,100,100,0,0],[3000,230,230,0,0]]'
+for f in onestop pinned; do
+  "$ecorail" solve --line track.data --train train.data --journey $f.json "${grid[@]}" \
+    --json ${f}_out.json > /dev/null 2> err.txt || { echo "FAIL: journey $f"; cat err.txt; fail=1; }
+done
+python3 - onestop_out.json pinned_out.json <<'PY' || fail=1
+import json, sys
+j, pinned = (json.load(open(f)) for f in sys.argv[1:])
+assert j["windows_met"] is True, j["windows_met"]
+stop = j["windows"][1]
+assert 100 - 0.05 <= stop["time_s"] <= 130 + 0.05 and stop["speed_kmh"] == 0.0, stop
+assert any("overlap" in w for w in j["warnings"]), j["warnings"]
+# The track is flat and both halves start and end at rest: the best split is the middle.
+assert abs(stop["time_s"] - 115.0) <= 1.0, stop
+assert j["traction_energy_kJ"] <= pinned["traction_energy_kJ"], (j["traction_energy_kJ"], pinned["traction_energy_kJ"])
+PY
+
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
 exit "$fail"

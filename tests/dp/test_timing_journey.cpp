@@ -405,5 +405,41 @@ TEST(TimingJourney, AStopSplitsTheJourneyIntoPartsWithTheirOwnTimes) {
   EXPECT_DOUBLE_EQ(slice_route(track, 1500.0, 3000.0).at(10.0).gradient_permille, 6.0);
 }
 
+// A one-point stop with a time window: the stop's time is both the arrival and the departure,
+// and its split of the journey's time between the two parts is optimised. Brute force: the same
+// journey with the stop pinned to each time of a scan over its window (every 4 s); the solver's
+// energy is no higher than the scan's best (within the golden section's 0.5 s and the grid's
+// raggedness, 0.05 %) and below the earliest time's (the rule before the search), and the best
+// of the scan lies inside the window, so the search has something to find.
+TEST(TimingJourney, AStopWithOneWindowGetsTheBestSplitOfTheTime) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const double e = 100.0, l = 140.0;
+  auto journey_kJ = [&](double earliest, double latest) {
+    const std::vector<TimingWindow> w = {stop_at(0, 0, 0), stop_at(1500, earliest, latest),
+                                         stop_at(3000, 240, 240)};
+    const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+    EXPECT_TRUE(sol.windows_met) << sol.summary.FullReport();
+    return sol;
+  };
+  const TimingJourneySolution best = journey_kJ(e, l);
+  ASSERT_TRUE(best.windows_met);
+  const double got_J = best.journey.traction_work_J;
+  const double stop_s = best.windows[1].time_s;
+  EXPECT_GE(stop_s, e - 0.05);
+  EXPECT_LE(stop_s, l + 0.05);
+  EXPECT_NEAR(best.journey.sections[0].dwell_after_s, 0.0, 0.05);
+  double scan_best_J = kOpen, scan_best_s = NAN;
+  for (double x = e; x <= l + 1e-9; x += 4.0) {
+    const double j = journey_kJ(x, x).journey.traction_work_J;
+    if (j < scan_best_J) scan_best_J = j, scan_best_s = x;
+  }
+  const double earliest_J = journey_kJ(e, e).journey.traction_work_J;
+  EXPECT_GT(scan_best_s, e);
+  EXPECT_LT(scan_best_s, l);
+  EXPECT_LE(got_J, scan_best_J * (1.0 + 5e-4)) << "stop at " << stop_s << " s";
+  EXPECT_LT(got_J, earliest_J) << "stop at " << stop_s << " s";
+}
+
 }  // namespace
 }  // namespace ecorail::dp
