@@ -82,11 +82,7 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
   }
   const physics::Route track =
       data::build_route(p.line, p.line.stations.front().name, p.line.stations.back().name, p.train);
-  std::vector<dp::TimingWindow> windows;
-  for (const auto& tp : journey.points) {
-    windows.push_back(
-        {tp.position_m, tp.earliest_s, tp.latest_s, tp.min_speed_ms, tp.max_speed_ms});
-  }
+  const std::vector<dp::TimingWindow>& windows = journey.points;
   dp::TimingJourneySolution sol;
   try {
     Progress progress("ecorail solve", quiet);

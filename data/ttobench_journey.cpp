@@ -1,5 +1,7 @@
 #include "data/ttobench_journey.hpp"
 
+#include <cmath>
+
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/ttobench_json.hpp"

@@ -5,22 +5,15 @@
 // Solving a journey subject to its windows: dp/timing_journey.hpp (`solve --journey`).
 #pragma once
 
-#include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
+#include "physics/timing_window.hpp"
+
 namespace ecorail::data {
 
-struct TimingPoint {
-  double position_m = 0.0;
-  // Open bounds are -inf / +inf.
-  double earliest_s = -std::numeric_limits<double>::infinity();
-  double latest_s = std::numeric_limits<double>::infinity();
-  double min_speed_ms = -std::numeric_limits<double>::infinity();
-  double max_speed_ms = std::numeric_limits<double>::infinity();
-  bool is_stop() const { return max_speed_ms == 0.0; }
-};
+// One timing point (physics/timing_window.hpp, the type the solver takes).
+using TimingPoint = physics::TimingWindow;
 
 struct TtobenchJourney {
   std::string id;

@@ -11,7 +11,6 @@
 // See docs/ttobench.md ("Journeys with timing points").
 #pragma once
 
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,18 +18,12 @@
 #include "dp/section_engine.hpp"
 #include "dp/termination.hpp"
 #include "dp/time_target.hpp"
+#include "physics/timing_window.hpp"
 
 namespace ecorail::dp {
 
-// One timing point: times in s from the journey's departure, speeds in m/s, open bounds +-inf.
-struct TimingWindow {
-  double position_m = 0.0;
-  double earliest_s = -std::numeric_limits<double>::infinity();
-  double latest_s = std::numeric_limits<double>::infinity();
-  double min_speed_ms = -std::numeric_limits<double>::infinity();
-  double max_speed_ms = std::numeric_limits<double>::infinity();
-  bool is_stop() const { return max_speed_ms == 0.0; }
-};
+// One timing point (physics/timing_window.hpp).
+using TimingWindow = physics::TimingWindow;
 
 struct TimingJourneyOptions {
   EngineOptions engine;

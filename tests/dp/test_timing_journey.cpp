@@ -46,6 +46,14 @@ TimingWindow pass_at(double s, double earliest, double latest) {
   return {s, earliest, latest, -kOpen, kOpen};
 }
 
+// When a run first reaches position s_m (+inf if it never does).
+double time_at(const physics::SimulationResult& sim, double s_m) {
+  for (const auto& p : sim.trace) {
+    if (p.s_m >= s_m) return p.t_s;
+  }
+  return kOpen;
+}
+
 // The plain running-time optimum of the whole track (one price).
 TimeSearchResult plain(const physics::Train& train, const physics::Route& route, double time_s) {
   const SectionEngine engine(train, route, coarse().engine);
@@ -77,16 +85,10 @@ TEST(StagePrices, AHigherPriceBeforeAPointMakesThatStretchFaster) {
   dear = cheap;
   for (int i = 0; i < mid; ++i) dear.lambda_J_per_s[i] = 3e6;
   const double s_mid = engine.grid().position(mid);
-  auto time_at = [&](const LambdaRun& run) {
-    for (const auto& p : run.sim.trace) {
-      if (p.s_m >= s_mid) return p.t_s;
-    }
-    return kOpen;
-  };
   const LambdaRun a = engine.run(cheap, {}, engine.options().resim_step_m);
   const LambdaRun b = engine.run(dear, {}, engine.options().resim_step_m);
   ASSERT_TRUE(run_arrives(a.sim) && run_arrives(b.sim));
-  EXPECT_LT(time_at(b), time_at(a) - 1.0);
+  EXPECT_LT(time_at(b.sim, s_mid), time_at(a.sim, s_mid) - 1.0);
 }
 
 TEST(TimingJourney, WindowsThatDoNotBindGiveThePlainOptimum) {
@@ -117,13 +119,7 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
   const physics::Route track = test_track();
   const TimeSearchResult ref = plain(train, track, 240.0);
   ASSERT_TRUE(ref.converged);
-  double t_free = 0.0;
-  for (const auto& p : ref.run.sim.trace) {
-    if (p.s_m >= 1500.0) {
-      t_free = p.t_s;
-      break;
-    }
-  }
+  const double t_free = time_at(ref.run.sim, 1500.0);
   const double latest = std::floor(t_free - 6.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, latest),
                                        stop_at(3000, 200, 240)};
@@ -152,14 +148,7 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
           r.sim.running_time_s < 200.0) {
         continue;
       }
-      double t_k = kOpen;
-      for (const auto& q : r.sim.trace) {
-        if (q.s_m >= 1500.0) {
-          t_k = q.t_s;
-          break;
-        }
-      }
-      if (t_k > latest + options.time_tolerance_s) continue;
+      if (time_at(r.sim, 1500.0) > latest + options.time_tolerance_s) continue;
       best_scan = std::min(best_scan, r.sim.energy.traction_work_J);
     }
   }
@@ -198,12 +187,6 @@ TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
   const physics::Route track = test_track();
   const TimeSearchResult ref = plain(train, track, 240.0);
   ASSERT_TRUE(ref.converged);
-  auto time_at = [](const physics::SimulationResult& sim, double s) {
-    for (const auto& p : sim.trace) {
-      if (p.s_m >= s) return p.t_s;
-    }
-    return kOpen;
-  };
   const double latest1 = std::floor(time_at(ref.run.sim, 1000.0) - 10.0);
   const double latest2 = std::floor(time_at(ref.run.sim, 2000.0) - 12.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1000, 0, latest1),
@@ -263,13 +246,7 @@ TEST(TimingJourney, ABindingEarliestWindowIsMet) {
   const physics::Route track = test_track();
   const TimeSearchResult ref = plain(train, track, 240.0);
   ASSERT_TRUE(ref.converged);
-  double t_free = 0.0;
-  for (const auto& p : ref.run.sim.trace) {
-    if (p.s_m >= 1500.0) {
-      t_free = p.t_s;
-      break;
-    }
-  }
+  const double t_free = time_at(ref.run.sim, 1500.0);
   const double earliest = std::ceil(t_free + 5.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, earliest, 400),
                                        stop_at(3000, 200, 240)};
@@ -287,13 +264,7 @@ TEST(TimingJourney, AWindowBelowTheFlatOutTimeIsRefusedNamingIt) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
   const SectionEngine engine(train, track, coarse().engine);
-  double flat_at = 0.0;
-  for (const auto& p : engine.min_time_run().trace) {
-    if (p.s_m >= 1500.0) {
-      flat_at = p.t_s;
-      break;
-    }
-  }
+  const double flat_at = time_at(engine.min_time_run(), 1500.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, flat_at - 2.0),
                                        stop_at(3000, 200, 240)};
   try {
