@@ -30,13 +30,25 @@ double seconds_since(Clock::time_point t0) {
 // (each one's sweep then runs on the thread it is given); results do not depend on which thread
 // ran which section.
 // The first section may start mid-run (a restart).
+// step_m: the re-simulation step of the runs (0: each engine's fine step).
 std::vector<LambdaRun> run_all(const std::vector<const SectionEngine*>& engines, double lambda,
-                               const StartState& start) {
+                               const StartState& start, double step_m) {
   std::vector<LambdaRun> runs(engines.size());
   const int n = static_cast<int>(engines.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) runs[i] = engines[i]->run(lambda, i == 0 ? start : StartState{});
+  for (int i = 0; i < n; ++i) {
+    const SectionEngine& e = *engines[i];
+    runs[i] = e.run(lambda, i == 0 ? start : StartState{},
+                    step_m > e.options().resim_step_m ? step_m : e.options().resim_step_m);
+  }
   return runs;
+}
+
+// The same runs at each engine's fine step (from their kept value functions: no sweep).
+void refine_all(const std::vector<const SectionEngine*>& engines, std::vector<LambdaRun>& runs) {
+  const int n = static_cast<int>(runs.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) runs[i] = engines[i]->fine_run(runs[i]);
 }
 
 double total_time(const std::vector<LambdaRun>& runs) {
@@ -52,13 +64,17 @@ struct PricePrediction {
   double dT_dx = 0.0;  // negative; 0: no prediction
 };
 
+// The price is bracketed and narrowed on runs re-simulated at opt.search_step_m (coarse, as a
+// section's search); the best price's runs are then made fine before the trim, which alone are
+// returned.
 void optimal_split(const std::vector<const SectionEngine*>& engines, double target,
                    const TimeSearchOptions& opt, const StartState& start,
                    const PricePrediction& predicted, JourneySolution& out,
                    std::vector<LambdaRun>& best) {
   double best_err = INFINITY, best_x = std::log(opt.lambda_guess);
+  double step_m = opt.search_step_m;
   auto evaluate = [&](double x) {
-    std::vector<LambdaRun> runs = run_all(engines, std::exp(x), start);
+    std::vector<LambdaRun> runs = run_all(engines, std::exp(x), start, step_m);
     ++out.lambda_evaluations;
     report_progress(opt.progress, "lambda evaluation", out.lambda_evaluations, 0);
     const double f = total_time(runs) - target;
@@ -97,6 +113,9 @@ void optimal_split(const std::vector<const SectionEngine*>& engines, double targ
     bracket->narrow([&] { return best_err <= tolerance; });
   };
   if (best_err > coarse) narrow(coarse);
+  refine_all(engines, best);
+  best_err = std::abs(total_time(best) - target);
+  step_m = 0.0;  // from here on every run is fine
   // Close the rest on one section, the longest-running first (it has the most room to move);
   // if no section can, narrow lambda to the fine tolerance instead.
   if (best_err <= opt.tolerance_s) {
@@ -112,7 +131,8 @@ void optimal_split(const std::vector<const SectionEngine*>& engines, double targ
   for (std::size_t i : opt.trim ? order : std::vector<std::size_t>{}) {
     TimeSearchResult r;
     r.run = best[i];
-    if (trim_to_time(*engines[i], best[i].sim.running_time_s - residual, opt.tolerance_s, r)) {
+    if (trim_to_time(*engines[i], best[i].sim.running_time_s - residual, opt.tolerance_s, r,
+                     opt.search_step_m)) {
       best[i] = std::move(r.run);
       out.converged = true;
       return;

@@ -153,6 +153,11 @@ LambdaRun SectionEngine::run(const StagePrices& prices, const StartState& start,
   return run_from(sweep(prices), start, resim_step_m);
 }
 
+LambdaRun SectionEngine::fine_run(const LambdaRun& run) const {
+  if (!run.kept) return run;
+  return run_program(run.kept->value, run.kept->extracted, run.start, options_.resim_step_m);
+}
+
 namespace {
 
 // Positions where a stage-priced value function's price changes.
@@ -204,18 +209,32 @@ physics::ControlProgram hold_cruising_by_stretch(const physics::ControlProgram& 
 
 }  // namespace
 
-LambdaRun SectionEngine::run_from(const ValueFunction& value, const StartState& start,
+LambdaRun SectionEngine::run_from(ValueFunction value, const StartState& start,
                                   double resim_step_m) const {
-  const double lambda = value.lambda;
   ExtractionSettings settings;
   settings.start_position_m = start.position_m;
   settings.start_speed_ms = start.speed_ms;
   settings.decision_step_m = options_.decision_step_m;
   settings.dp_step = dp_step();
+  physics::ControlProgram extracted =
+      extract_program(motion_, grid_, value, options_.objective, settings);
+  if (resim_step_m == options_.resim_step_m) {
+    return run_program(value, std::move(extracted), start, resim_step_m);
+  }
+  // A coarse run keeps what its fine run needs (fine_run): the extraction does not depend on
+  // the re-simulation step.
+  auto kept = std::make_shared<const KeptForFineRun>(KeptForFineRun{std::move(value), extracted});
+  LambdaRun out = run_program(kept->value, std::move(extracted), start, resim_step_m);
+  out.kept = std::move(kept);
+  return out;
+}
+
+LambdaRun SectionEngine::run_program(const ValueFunction& value, physics::ControlProgram program,
+                                     const StartState& start, double resim_step_m) const {
   LambdaRun out;
-  out.lambda = lambda;
+  out.lambda = value.lambda;
   out.start = start;
-  out.program = extract_program(motion_, grid_, value, options_.objective, settings);
+  out.program = std::move(program);
   std::shared_ptr<const physics::SimulationResult> base;
   {
     const std::lock_guard<std::mutex> lock(resume_mutex_);

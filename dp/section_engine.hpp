@@ -49,12 +49,23 @@ struct StartState {
   bool at_departure() const { return position_m <= 0.0 && speed_ms <= 0.0; }
 };
 
+// The value function of a coarse run and the program extracted from it (before the cruise is
+// held and braking holds coast, which depend on the re-simulation).
+struct KeptForFineRun {
+  ValueFunction value;
+  physics::ControlProgram extracted;
+};
+
 struct LambdaRun {
   double lambda = 0.0;
   StartState start;
   physics::ControlProgram program;
   physics::SimulationResult sim;
   double cost_J = 0.0;  // energy cost by the objective, from the re-simulation
+  // For a run re-simulated at a step other than the engine's fine one (a search's cheap
+  // evaluation): what its fine run (SectionEngine::fine_run) needs besides, so that it costs no
+  // second sweep or extraction. Empty for a fine run.
+  std::shared_ptr<const KeptForFineRun> kept;
 };
 
 class SectionEngine {
@@ -79,6 +90,10 @@ class SectionEngine {
   // The run for a price per stage and speed bands (dp/stage_prices.hpp): a journey's timing
   // points. Its lambda is the last stage's price.
   LambdaRun run(const StagePrices& prices, const StartState& start, double resim_step_m) const;
+  // The run of `run`'s price (or stage prices) at the engine's fine step: bit for bit
+  // run(run.lambda, run.start) (or the stage-priced run), without the sweep when `run` kept its
+  // value function (a coarse run); `run` itself when it is already fine.
+  LambdaRun fine_run(const LambdaRun& run) const;
   // A fresh backward sweep for lambda (cost-to-go and optimal control on the grid), e.g. for
   // policy tables.
   ValueFunction sweep(double lambda) const;
@@ -118,8 +133,10 @@ class SectionEngine {
 
  private:
   // Extraction and re-simulation of the program a value function implies.
-  LambdaRun run_from(const ValueFunction& value, const StartState& start,
-                     double resim_step_m) const;
+  LambdaRun run_from(ValueFunction value, const StartState& start, double resim_step_m) const;
+  // The re-simulation of an extracted program (and its held cruise and coasting holds).
+  LambdaRun run_program(const ValueFunction& value, physics::ControlProgram program,
+                        const StartState& start, double resim_step_m) const;
 
   physics::Train train_;
   physics::Route route_;

@@ -150,7 +150,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   };
   auto refine = [&] {
     if (!have_best || !best_is_coarse) return;
-    out.run = engine.run(out.run.lambda, start);
+    out.run = engine.fine_run(out.run);
     ++out.iterations;
     best_is_coarse = false;
   };
@@ -171,7 +171,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   auto trimmed = [&] {
     if (!options.trim) return false;
     TimeSearchResult attempt = out;
-    if (!trim_to_time(engine, target, options.tolerance_s, attempt)) {
+    if (!trim_to_time(engine, target, options.tolerance_s, attempt, options.search_step_m)) {
       out.trim_iterations = attempt.trim_iterations;
       return false;
     }
@@ -190,6 +190,17 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
     step_now = coarse_step;
     for (double tolerance : phases) {
       b.narrow([&] { return error_of_best() <= tolerance; });
+      if (best_is_coarse && options.trim && error_of_best() > options.tolerance_s &&
+          std::isfinite(error_of_best())) {
+        // Trimmed on coarse runs, checked by a fine one: no fine run of the untrimmed program.
+        TimeSearchResult attempt = out;
+        if (trim_via_coarse_runs(engine, target, options.tolerance_s, attempt, coarse_step, 0.0)) {
+          out = std::move(attempt);
+          best_is_coarse = false;
+          return true;
+        }
+        out.trim_iterations = attempt.trim_iterations;
+      }
       refine();
       if (error_of_best() <= options.tolerance_s || trimmed()) return true;
       step_now = engine.options().resim_step_m;  // the fine tolerance on fine runs
@@ -236,8 +247,11 @@ constexpr int kTrimEvaluations = 40;
 constexpr double kTrimMinWidth_m = 1e-9;
 }  // namespace
 
-bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s,
-                  TimeSearchResult& result) {
+namespace {
+// The trim on runs re-simulated at step_m (result.run.sim must be a run at that step): every
+// probe and trial is resumed at that step.
+bool trim_at_step(const SectionEngine& engine, double target, double tolerance_s,
+                  TimeSearchResult& result, double step_m) {
   LambdaRun& run = result.run;
   // A re-simulation that does not arrive counts as too slow and is never accepted.
   auto error = [&](const physics::SimulationResult& sim) {
@@ -262,7 +276,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
                                physics::first_difference_m(trial, recent_sim.checkpoint_program) >
                                    physics::first_difference_m(trial, run.sim.checkpoint_program);
     physics::SimulationResult sim =
-        engine.resimulate(trial, run.start, recent_closer ? recent_sim : run.sim);
+        engine.resimulate(trial, run.start, step_m, recent_closer ? recent_sim : run.sim);
     recent_sim = sim;
     return sim;
   };
@@ -359,6 +373,71 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     }
   }
   return false;
+}
+
+// The coarse trim: how many times the fine run may correct the coarse target, and the share of
+// the tolerance the coarse trim aims at (the rest is room for the coarse-to-fine difference to
+// change with the switch, which is far smaller: both runs step alike up to the switch).
+constexpr int kCoarseTrimRounds = 3;
+constexpr double kCoarseTrimShare = 0.25;
+}  // namespace
+
+bool trim_via_coarse_runs(const SectionEngine& engine, double target, double tolerance_s,
+                          TimeSearchResult& result, double step_m, double offset_s,
+                          physics::SimulationResult fine_base) {
+  TimeSearchResult coarse = result;
+  double shift_m = 0.0;
+  for (int k = 0; k < kCoarseTrimRounds; ++k) {
+    coarse.trim_iterations = 0;
+    coarse.trim_shift_m = 0.0;
+    const bool met =
+        trim_at_step(engine, target - offset_s, kCoarseTrimShare * tolerance_s, coarse, step_m);
+    result.trim_iterations += coarse.trim_iterations;
+    if (!met) return false;
+    shift_m += coarse.trim_shift_m;
+    const LambdaRun& trial = coarse.run;
+    physics::SimulationResult sim = fine_base.checkpoints.empty()
+                                        ? engine.simulate(trial.program, trial.start)
+                                        : engine.resimulate(trial.program, trial.start, fine_base);
+    ++result.trim_iterations;
+    if (!run_arrives(sim)) return false;
+    if (std::abs(sim.running_time_s - target) <= tolerance_s) {
+      result.run.program = trial.program;
+      result.run.sim = std::move(sim);
+      result.run.cost_J = engine.energy_cost_J(result.run.sim);
+      result.run.kept.reset();
+      result.trim_shift_m = shift_m;
+      return true;
+    }
+    offset_s = sim.running_time_s - trial.sim.running_time_s;
+    fine_base = std::move(sim);
+  }
+  return false;
+}
+
+bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s,
+                  TimeSearchResult& result, double search_step_m) {
+  LambdaRun& run = result.run;
+  if (run_arrives(run.sim) && std::abs(run.sim.running_time_s - target) <= tolerance_s) {
+    return true;
+  }
+  const double fine_m = engine.options().resim_step_m;
+  if (search_step_m > fine_m && run_arrives(run.sim)) {
+    TimeSearchResult coarse = result;
+    coarse.run.sim = engine.simulate(run.program, run.start, search_step_m);
+    ++coarse.trim_iterations;
+    const double offset_s = run.sim.running_time_s - coarse.run.sim.running_time_s;
+    const bool met =
+        trim_via_coarse_runs(engine, target, tolerance_s, coarse, search_step_m, offset_s, run.sim);
+    result.trim_iterations = coarse.trim_iterations;
+    if (met) {
+      run = std::move(coarse.run);
+      result.trim_shift_m = coarse.trim_shift_m;
+      return true;
+    }
+  }
+  // On fine runs (also when the coarse trim could not close the gap).
+  return trim_at_step(engine, target, tolerance_s, result, fine_m);
 }
 
 }  // namespace ecorail::dp

@@ -3,12 +3,14 @@
 // expansion in log space and closes the bracket by regula falsi (Illinois variant) on the
 // re-simulated time, so the time it reports is the measured one.
 //
-// On a grid, T(lambda) is slightly ragged (a few hundredths of a second), while every run lies
-// on the same energy-time frontier. So the lambda search stops within a coarse tolerance and the
-// last hundredths are closed by trimming one switch point out of full traction: at an optimum
-// the marginal energy per second of moving any switch point equals lambda, so the trim moves
-// along the frontier and costs only a second-order error.
-//
+// On a grid, T(lambda) is ragged (by hundredths of a second, and in places by seconds where the
+// optimal program changes shape), while every run lies on the same energy-time frontier. So the
+// lambda search stops within a coarse tolerance (lambda_tolerance_s, half a second) and the rest
+// is closed by trimming one switch point out of full traction: at an optimum the marginal energy
+// per second of moving any switch point equals lambda, so the trim moves along the frontier and
+// costs only a second-order error (measured on the A6 -> A7 frontier: within +-0.013 % of a
+// search to 0.05 s, mean -0.00002 %, docs/performance.md).
+
 // Long running times have an upper end too. From rest the first grid step admits only full
 // traction (every other control stalls at v = 0), and at low speeds a coast that the grid
 // believes reaches the next stage (its end speed interpolated towards the v = 0 node) may stall
@@ -19,6 +21,7 @@
 // longer one with LongTimeError, as it refuses one below the flat-out run.
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -89,19 +92,22 @@ inline constexpr int kSlowScanRefinements = 6;
 SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start = {});
 
 struct TimeSearchOptions {
-  double tolerance_s = 0.001;        // final, after the trim
-  double lambda_tolerance_s = 0.05;  // lambda search alone
+  double tolerance_s = 0.001;       // final, after the trim
+  double lambda_tolerance_s = 0.5;  // lambda search alone; the trim closes the rest
   bool trim = true;
   int max_iterations = 60;
-  double lambda_guess = 3e5;    // J/s; only a starting point
-  double bracket_factor = 4.0;  // lambda is multiplied or divided by this while bracketing
+  double lambda_guess = 3e5;  // J/s; only a starting point
+  // lambda is multiplied or divided by this while bracketing: the lattice of prices a frontier's
+  // searches share (LatticeRuns); a factor of 2 leaves the regula falsi about one evaluation
+  // per frontier point.
+  double bracket_factor = 2.0;
   // Re-simulation step (RK4) of the runs that bracket and narrow lambda to lambda_tolerance_s;
-  // the best is then re-run at the engine's fine step, which alone is trimmed and returned.
-  // 0 (the default), or at most the engine's resim_step_m: every run is fine. 0.5 m makes a
-  // section solve about 20 % cheaper but lets the search settle on a neighbouring price: the
-  // README's energies move by under 0.001 %, a journey warm-started from frontiers by 0.008 %
-  // (docs/performance.md), so it is not the default.
-  double search_step_m = 0.0;
+  // the best is then re-run at the engine's fine step (from its kept value function, no second
+  // sweep), which alone is trimmed and returned. RK4 at 0.5 m puts a run's time within about a
+  // millisecond of the fine run's, far inside lambda_tolerance_s, at a tenth of its cost. 0, or
+  // at most the engine's resim_step_m: every run is fine (the search before issue 10; the
+  // energies it gives differ by under 0.005 %, docs/performance.md).
+  double search_step_m = 0.5;
   // Called after each lambda evaluation ("lambda evaluation", count, 0); may be empty.
   ProgressFn progress;
   // A long cruise of the converged run is made one hold with its coasting point searched
@@ -123,9 +129,22 @@ struct TimeSearchResult {
 };
 
 // Moves one switch point out of full traction so the re-simulated time matches the target.
-// Returns false if no switch point can reach it.
+// Returns false if no switch point can reach it. With search_step_m above the engine's fine step
+// the switch is searched on runs re-simulated at that step (a tenth of the cost at 0.5 m),
+// aiming at the target moved by the fine run's offset from the coarse one; the trimmed program
+// is then re-simulated at the fine step, which alone is accepted (within tolerance_s) and
+// returned. If that does not meet the time, the search runs on fine runs as before.
 bool trim_to_time(const SectionEngine& engine, double target_time_s, double tolerance_s,
-                  TimeSearchResult& result);
+                  TimeSearchResult& result, double search_step_m = 0.0);
+// The same for a run re-simulated at step_m (result.run.sim, a search's coarse run): trimmed on
+// runs at that step towards the target moved by offset_s (the fine run's time minus the coarse
+// one's, 0 if not known), each trimmed program checked by a fine run (resumed from fine_base, a
+// fine run of a program that shares a prefix, when it has checkpoints), a miss correcting the
+// offset by what that fine run measured. Only a fine run that meets the time is accepted and
+// returned in result; false when none did.
+bool trim_via_coarse_runs(const SectionEngine& engine, double target_time_s, double tolerance_s,
+                          TimeSearchResult& result, double step_m, double offset_s,
+                          physics::SimulationResult fine_base = {});
 
 // Runs already computed on the search's lattice of prices (lambda_guess times powers of
 // bracket_factor), shared by consecutive searches on one engine from one start, e.g. the points
@@ -142,6 +161,10 @@ class LatticeRuns {
   std::map<double, LambdaRun> runs_;
 };
 
+// Where a neighbouring solve put the price: log(lambda) and the slope of the running time in it
+// (negative), e.g. the previous point of a frontier or the frontiers' price of a journey. Only a
+// starting point: the search starts with Newton and secant steps from it instead of walking the
+// lattice, which costs about one evaluation when the neighbour is close.
 // From rest at the departure, or (start given) for the rest of the section from a mid-run state
 // in the remaining running time target_time_s. InfeasibleTimeError below the flat-out time,
 // LongTimeError above the slow limit; otherwise converged says whether the time was met by a

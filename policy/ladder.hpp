@@ -15,10 +15,20 @@
 
 namespace ecorail::policy {
 
+inline constexpr double kLayerLambdaTolerance_s = 0.05;
+inline dp::TimeSearchOptions layer_search() {
+  dp::TimeSearchOptions o;
+  o.lambda_tolerance_s = kLayerLambdaTolerance_s;
+  return o;
+}
+
 struct PolicyLadderOptions {
   double nominal_time_s = 0.0;              // running time of the layer with offset 0
   std::vector<double> time_offsets_s{0.0};  // one layer per nominal_time_s + offset
-  dp::TimeSearchOptions search;
+  // A layer is the value function of its price, driven by feedback, not a trimmed program: the
+  // price itself must give the running time, so it is searched to kLayerLambdaTolerance_s (the
+  // section search's default leaves half a second to its trim).
+  dp::TimeSearchOptions search = layer_search();
   // Called with ("layer", layers done, layers) as the ladder is built (cli/progress.hpp).
   dp::ProgressFn progress;
   // Checks every field (offsets distinct, each leaving a positive running time); on failure

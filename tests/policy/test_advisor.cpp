@@ -15,6 +15,7 @@
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
 #include "policy/advisor.hpp"
+#include "policy/ladder.hpp"
 
 namespace ecorail {
 namespace {
@@ -30,7 +31,9 @@ struct Fixture {
     table =
         policy::make_policy_table(engine, line.name, line.checksum(), data::train_checksum(train));
     for (double offset : {-5.0, 0.0, 5.0}) {
-      const dp::TimeSearchResult found = dp::solve_for_time(engine, 110.0 + offset, {});
+      // Searched as the ladder searches a layer's price (to 0.05 s, no trim to lean on).
+      const dp::TimeSearchResult found =
+          dp::solve_for_time(engine, 110.0 + offset, policy::layer_search());
       policy::PolicyLayer layer = policy::build_policy_layer(engine, found.run.lambda);
       layer.time_offset_s = offset;
       layer.target_time_s = 110.0 + offset;
@@ -166,7 +169,9 @@ TEST(Advisor, AdviceAtTheStartOnTheBrakingCurveAndAtTheStop) {
   EXPECT_EQ(late.control, physics::Control::MaxBrake);
   EXPECT_EQ(late.regime, physics::Regime::FullBrake);
   EXPECT_NEAR(late.force_N, -166e3, 1.0);
-  EXPECT_DOUBLE_EQ(late.energy_to_go_J, 0.0);
+  // No traction to go: energy_to_go is cost_to_go - lambda * time_to_go, a difference of two
+  // numbers of millions of joules, so it is 0 up to the rounding of that subtraction.
+  EXPECT_NEAR(late.energy_to_go_J, 0.0, 1e-12 * late.cost_to_go_J);
   const policy::Advice stop = advisor.advise(f.table.route_length_m, 0.0);
   EXPECT_EQ(stop.cost_to_go_J, 0.0);
 }

@@ -20,6 +20,7 @@
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
 #include "policy/advisor.hpp"
+#include "policy/ladder.hpp"
 
 namespace ecorail {
 namespace {
@@ -87,9 +88,9 @@ class AdvisorClosedLoop : public ::testing::Test {
     policy::PolicyTable table = policy::make_policy_table(engine, line_->name, line_->checksum(),
                                                           data::train_checksum(*train_));
     for (double offset : {-4.0, -2.0, 0.0, 2.0, 4.0}) {
-      const double lambda = offset == 0.0
-                                ? optimum_->run.lambda
-                                : dp::solve_for_time(engine, kTimetable_s + offset, {}).run.lambda;
+      // Each layer's price searched as the ladder searches it (policy::layer_search).
+      const double lambda =
+          dp::solve_for_time(engine, kTimetable_s + offset, policy::layer_search()).run.lambda;
       policy::PolicyLayer layer = policy::build_policy_layer(engine, lambda);
       layer.time_offset_s = offset;
       layer.target_time_s = kTimetable_s + offset;
