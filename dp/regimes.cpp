@@ -104,7 +104,8 @@ MinRegimeResult enforce_min_regime(const SectionEngine& engine, const LambdaRun&
     trimmed.run.sim = engine.simulate(trimmed.run.program, run.start);
     trimmed.run.cost_J = engine.energy_cost_J(trimmed.run.sim);
     // The trim's own tolerance is the search's final one (TimeSearchOptions::tolerance_s).
-    trim_to_time(engine, target_time_s, TimeSearchOptions{}.tolerance_s, trimmed);
+    // The merged program is no optimum of its price: any switch may be trimmed.
+    trim_to_time(engine, target_time_s, TimeSearchOptions{}.tolerance_s, trimmed, 0.0, false);
     out.trim_simulations += trimmed.trim_iterations;
     out.run = std::move(trimmed.run);
   }

@@ -107,9 +107,10 @@ void LatticeRuns::keep(const LambdaRun& run) {
   runs_.emplace(run.lambda, run);
 }
 
-TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
-                                const TimeSearchOptions& options, const StartState& start,
-                                LatticeRuns* memo) {
+namespace {
+TimeSearchResult search_for_time(const SectionEngine& engine, double target,
+                                 const TimeSearchOptions& options, const StartState& start,
+                                 LatticeRuns* memo) {
   const physics::SimulationResult flat_out = engine.min_time_run(start);
   if (flat_out.stopped_early) {
     throw std::invalid_argument("the train cannot reach the end of the section from this state");
@@ -182,14 +183,20 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   LambdaBracket bracket(evaluate, std::log(options.lambda_guess), std::log(options.bracket_factor),
                         options.max_iterations);
   walking = false;
-  // First to the coarse tolerance, where the trim takes over; if the trim cannot close the gap,
-  // on to the fine tolerance without it.
-  const double phases[] = {options.trim ? options.lambda_tolerance_s : options.tolerance_s,
-                           options.tolerance_s};
+  // First to the coarse tolerance, where the trim takes over; if the trim cannot close the gap
+  // (or only at a price far above lambda), on to kFallbackLambdaTolerance_s on coarse runs and
+  // the trim again; then on to the fine tolerance on fine runs without it.
+  std::vector<double> phases = {options.trim ? options.lambda_tolerance_s : options.tolerance_s};
+  if (options.trim && options.lambda_tolerance_s > kFallbackLambdaTolerance_s) {
+    phases.push_back(kFallbackLambdaTolerance_s);
+  }
+  phases.push_back(options.tolerance_s);
   auto close = [&](LambdaBracket& b) {
     step_now = coarse_step;
-    for (double tolerance : phases) {
-      b.narrow([&] { return error_of_best() <= tolerance; });
+    for (std::size_t k = 0; k < phases.size(); ++k) {
+      const bool last_phase = k + 1 == phases.size();
+      if (last_phase) step_now = engine.options().resim_step_m;  // the fine tolerance on fine runs
+      b.narrow([&] { return error_of_best() <= phases[k]; });
       if (best_is_coarse && options.trim && error_of_best() > options.tolerance_s &&
           std::isfinite(error_of_best())) {
         // Trimmed on coarse runs, checked by a fine one: no fine run of the untrimmed program.
@@ -200,10 +207,10 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
           return true;
         }
         out.trim_iterations = attempt.trim_iterations;
+        if (!last_phase) continue;  // a closer price first
       }
       refine();
       if (error_of_best() <= options.tolerance_s || trimmed()) return true;
-      step_now = engine.options().resim_step_m;  // the fine tolerance on fine runs
     }
     return false;
   };
@@ -239,11 +246,32 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   if (out.converged) polish();
   return out;
 }
+}  // namespace
+
+TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
+                                const TimeSearchOptions& options, const StartState& start,
+                                LatticeRuns* memo) {
+  TimeSearchResult coarse = search_for_time(engine, target, options, start, memo);
+  if (coarse.converged || !(options.search_step_m > engine.options().resim_step_m)) return coarse;
+  // A coarse run's program is decided on its own re-simulation (held cruises, coasting instead
+  // of braking holds), so where those decisions flip its running time can differ from the fine
+  // run's by seconds, and a time in such a place can be out of the coarse search's reach (A5 ->
+  // A6 in 152 s: a 6 s jump of the coarse running time where the fine one is smooth). Then the
+  // search runs again on fine runs only, as before issue 10.
+  TimeSearchOptions fine = options;
+  fine.search_step_m = 0.0;
+  TimeSearchResult out = search_for_time(engine, target, fine, start, nullptr);
+  out.iterations += coarse.iterations;
+  out.trim_iterations += coarse.trim_iterations;
+  return out;
+}
 
 namespace {
 // The trim's root search in one switch position: at most this many re-simulations, down to a
 // bracket this narrow.
 constexpr int kTrimEvaluations = 40;
+constexpr double kTrimExcessShare = 0.1;
+constexpr double kTrimExcessFloor = 1e-5;
 constexpr double kTrimMinWidth_m = 1e-9;
 }  // namespace
 
@@ -251,7 +279,7 @@ namespace {
 // The trim on runs re-simulated at step_m (result.run.sim must be a run at that step): every
 // probe and trial is resumed at that step.
 bool trim_at_step(const SectionEngine& engine, double target, double tolerance_s,
-                  TimeSearchResult& result, double step_m) {
+                  TimeSearchResult& result, double step_m, bool from_optimum) {
   LambdaRun& run = result.run;
   // A re-simulation that does not arrive counts as too slow and is never accepted.
   auto error = [&](const physics::SimulationResult& sim) {
@@ -294,6 +322,18 @@ bool trim_at_step(const SectionEngine& engine, double target, double tolerance_s
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.slope < b.slope; });
 
+  // A trim moves along the frontier only from an optimum and only to first order: a switch
+  // whose move buys the time far dearer than the run's price (e.g. a traction phase stretched
+  // past a limit and braked back) is no trim of this run. Accepted: at most the first-order
+  // cost, cost + lambda * (time - target), plus a tenth of the price of the gap and a
+  // hundred-thousandth of the cost (measured: A5 -> A6 in 157 s, trimmed by 0.37 s, went from
+  // 64.9 MJ to 68.6 MJ by the most time-sensitive switch; its neighbours cost 66.0 and 64.4 MJ;
+  // a tenth keeps every trim of the A6 -> A7 frontier, a twentieth sent points to the fine
+  // search). Only for a run that is an optimum of its price (from_optimum).
+  const double base_cost_J = run.cost_J;
+  const double gap_price_J = run.lambda * std::abs(error(run.sim));
+  const double along_frontier_J =
+      base_cost_J + run.lambda * (std::isfinite(error(run.sim)) ? error(run.sim) : 0.0);
   for (const Candidate& cand : candidates) {
     const std::size_t k = cand.index;
     // Bracket the root inside the switch's neighbours: f falls as the switch moves later.
@@ -365,9 +405,14 @@ bool trim_at_step(const SectionEngine& engine, double target, double tolerance_s
         lo, f_lo, hi, f_hi, kTrimEvaluations);
     root.narrow([&] { return last.valid && std::abs(last.f) <= tolerance_s; }, kTrimMinWidth_m);
     if (last.valid && std::abs(last.f) <= tolerance_s) {
+      const double cost = engine.energy_cost_J(last.sim);
+      if (from_optimum && cost > along_frontier_J + kTrimExcessShare * gap_price_J +
+                                     kTrimExcessFloor * base_cost_J) {
+        continue;  // this switch buys the time far dearer than the price: try the next one
+      }
       run.program = std::move(last.program);
       run.sim = std::move(last.sim);
-      run.cost_J = engine.energy_cost_J(run.sim);
+      run.cost_J = cost;
       result.trim_shift_m = last.x - x0;
       return true;
     }
@@ -390,8 +435,8 @@ bool trim_via_coarse_runs(const SectionEngine& engine, double target, double tol
   for (int k = 0; k < kCoarseTrimRounds; ++k) {
     coarse.trim_iterations = 0;
     coarse.trim_shift_m = 0.0;
-    const bool met =
-        trim_at_step(engine, target - offset_s, kCoarseTrimShare * tolerance_s, coarse, step_m);
+    const bool met = trim_at_step(engine, target - offset_s, kCoarseTrimShare * tolerance_s, coarse,
+                                  step_m, true);
     result.trim_iterations += coarse.trim_iterations;
     if (!met) return false;
     shift_m += coarse.trim_shift_m;
@@ -416,13 +461,13 @@ bool trim_via_coarse_runs(const SectionEngine& engine, double target, double tol
 }
 
 bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s,
-                  TimeSearchResult& result, double search_step_m) {
+                  TimeSearchResult& result, double search_step_m, bool from_optimum) {
   LambdaRun& run = result.run;
   if (run_arrives(run.sim) && std::abs(run.sim.running_time_s - target) <= tolerance_s) {
     return true;
   }
   const double fine_m = engine.options().resim_step_m;
-  if (search_step_m > fine_m && run_arrives(run.sim)) {
+  if (search_step_m > fine_m && from_optimum && run_arrives(run.sim)) {
     TimeSearchResult coarse = result;
     coarse.run.sim = engine.simulate(run.program, run.start, search_step_m);
     ++coarse.trim_iterations;
@@ -437,7 +482,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     }
   }
   // On fine runs (also when the coarse trim could not close the gap).
-  return trim_at_step(engine, target, tolerance_s, result, fine_m);
+  return trim_at_step(engine, target, tolerance_s, result, fine_m, from_optimum);
 }
 
 }  // namespace ecorail::dp

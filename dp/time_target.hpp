@@ -91,6 +91,10 @@ inline constexpr double kSlowScanStart_J_per_s = 3e5;
 inline constexpr int kSlowScanRefinements = 6;
 SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start = {});
 
+// Where the trim cannot close lambda_tolerance_s (or only at a price far above lambda), the
+// search narrows on to this before trimming again (the default tolerance before issue 10).
+inline constexpr double kFallbackLambdaTolerance_s = 0.05;
+
 struct TimeSearchOptions {
   double tolerance_s = 0.001;       // final, after the trim
   double lambda_tolerance_s = 0.5;  // lambda search alone; the trim closes the rest
@@ -134,8 +138,12 @@ struct TimeSearchResult {
 // aiming at the target moved by the fine run's offset from the coarse one; the trimmed program
 // is then re-simulated at the fine step, which alone is accepted (within tolerance_s) and
 // returned. If that does not meet the time, the search runs on fine runs as before.
+// A trimmed run of an optimum (from_optimum, the default) is accepted only if it costs at most
+// about what moving along the frontier costs (its cost plus lambda times the time gained, plus a
+// tenth of that again): a switch that buys the time far dearer is skipped for the next one. An
+// edited, non-optimal program (e.g. dp::enforce_min_regime's merges) is trimmed without it.
 bool trim_to_time(const SectionEngine& engine, double target_time_s, double tolerance_s,
-                  TimeSearchResult& result, double search_step_m = 0.0);
+                  TimeSearchResult& result, double search_step_m = 0.0, bool from_optimum = true);
 // The same for a run re-simulated at step_m (result.run.sim, a search's coarse run): trimmed on
 // runs at that step towards the target moved by offset_s (the fine run's time minus the coarse
 // one's, 0 if not known), each trimmed program checked by a fine run (resumed from fine_base, a
