@@ -343,6 +343,15 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
     const PricePrediction predicted =
         price_from_frontiers(library, first, last, total_time_s, options);
     optimal_split(engines, total_time_s, options.search, options.start, predicted, out, runs);
+    if (!out.converged && options.search.search_step_m > 0.0) {
+      // As a section's search (solve_for_time): where the coarse runs' own decisions make their
+      // times differ from the fine runs' (long, slow runs: A6 -> A8 in 1100 s with 30 s
+      // dwells), the price is searched again on fine runs only.
+      TimeSearchOptions fine = options.search;
+      fine.search_step_m = 0.0;
+      runs.clear();
+      optimal_split(engines, total_time_s, fine, options.start, predicted, out, runs);
+    }
   } else {
     out.lambda_J_per_s = NAN;
     out.converged = true;

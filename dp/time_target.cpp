@@ -272,6 +272,7 @@ namespace {
 constexpr int kTrimEvaluations = 40;
 constexpr double kTrimExcessShare = 0.1;
 constexpr double kTrimExcessFloor = 1e-5;
+constexpr double kTrimGapScale_s = 0.5;
 constexpr double kTrimMinWidth_m = 1e-9;
 }  // namespace
 
@@ -331,7 +332,11 @@ bool trim_at_step(const SectionEngine& engine, double target, double tolerance_s
   // a tenth keeps every trim of the A6 -> A7 frontier, a twentieth sent points to the fine
   // search). Only for a run that is an optimum of its price (from_optimum).
   const double base_cost_J = run.cost_J;
-  const double gap_price_J = run.lambda * std::abs(error(run.sim));
+  // The second-order part grows with the square of the gap: beyond kTrimGapScale_s the
+  // allowance grows with it (a journey's section trimmed 80 s slower at 4.7 kJ/s saves 307 kJ
+  // where the first order says 375 kJ: a good trim, 18 % short of the first order).
+  const double gap_s = std::isfinite(error(run.sim)) ? std::abs(error(run.sim)) : 0.0;
+  const double gap_price_J = run.lambda * gap_s * std::max(1.0, gap_s / kTrimGapScale_s);
   const double along_frontier_J =
       base_cost_J + run.lambda * (std::isfinite(error(run.sim)) ? error(run.sim) : 0.0);
   for (const Candidate& cand : candidates) {
