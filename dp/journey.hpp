@@ -1,9 +1,11 @@
 // Journeys: one train over several consecutive sections with dwells between them and one total
 // running time (dwells excluded, as the published problem counts it). With the optimal split,
 // a single time price lambda applies to every section, so at the optimum each section's
-// marginal energy per second is the same; lambda is searched on the total re-simulated time and
-// the last hundredths are closed by trimming one section (first-order neutral, as in the
-// single-section search). The proportional split gives each section a share of the time in
+// marginal energy per second is the same; lambda is searched on the total time of runs
+// re-simulated at the search step (0.5 m by default; the best price's runs are then made fine)
+// to within half a second, and the rest is closed by trimming one section (first-order neutral,
+// as in the single-section search; a search the coarse runs cannot converge runs again on fine
+// runs). The proportional split gives each section a share of the time in
 // proportion to its length and solves each on its own, for comparison with published methods.
 // Every solve returns a JourneySummary (termination, BriefReport, FullReport) like a section's;
 // options are checked (IsValid) before any work.
