@@ -38,8 +38,7 @@ std::vector<LambdaRun> run_all(const std::vector<const SectionEngine*>& engines,
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < n; ++i) {
     const SectionEngine& e = *engines[i];
-    runs[i] = e.run(lambda, i == 0 ? start : StartState{},
-                    step_m > e.options().resim_step_m ? step_m : e.options().resim_step_m);
+    runs[i] = e.run(lambda, i == 0 ? start : StartState{}, e.search_step_m(step_m));
   }
   return runs;
 }
@@ -343,7 +342,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
     const PricePrediction predicted =
         price_from_frontiers(library, first, last, total_time_s, options);
     optimal_split(engines, total_time_s, options.search, options.start, predicted, out, runs);
-    if (!out.converged && options.search.search_step_m > 0.0) {
+    if (!out.converged && engines.front()->searches_coarse(options.search.search_step_m)) {
       // As a section's search (solve_for_time): where the coarse runs' own decisions make their
       // times differ from the fine runs' (long, slow runs: A6 -> A8 in 1100 s with 30 s
       // dwells), the price is searched again on fine runs only.

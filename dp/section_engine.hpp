@@ -130,6 +130,13 @@ class SectionEngine {
   const physics::Motion& motion() const { return motion_; }
   const StageGrid& grid() const { return grid_; }
   const EngineOptions& options() const { return options_; }
+  // The re-simulation step of a search that asks for step_m: step_m where it is coarser than
+  // the engine's fine step (a search's cheap evaluations), the fine step otherwise (0: fine).
+  double search_step_m(double step_m) const {
+    return step_m > options_.resim_step_m ? step_m : options_.resim_step_m;
+  }
+  // Whether a search asking for step_m runs coarse evaluations at all.
+  bool searches_coarse(double step_m) const { return step_m > options_.resim_step_m; }
 
  private:
   // Extraction and re-simulation of the program a value function implies.

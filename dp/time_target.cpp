@@ -137,9 +137,7 @@ TimeSearchResult search_for_time(const SectionEngine& engine, double target,
   auto error_of_best = [&] { return have_best ? error_of(out.run) : INFINITY; };
   // The bracket is found and narrowed on runs re-simulated at the search step (coarse); the
   // best run is re-run at the fine step before it is trimmed or returned (refine).
-  const double coarse_step = options.search_step_m > engine.options().resim_step_m
-                                 ? options.search_step_m
-                                 : engine.options().resim_step_m;
+  const double coarse_step = engine.search_step_m(options.search_step_m);
   double step_now = coarse_step;
   bool best_is_coarse = false;
   auto consider = [&](LambdaRun run, bool coarse) {
@@ -166,7 +164,7 @@ TimeSearchResult search_for_time(const SectionEngine& engine, double target,
       report_progress(options.progress, "lambda evaluation", out.iterations, 0);
     }
     const double f = run_arrives(run.sim) ? run.sim.running_time_s - target : INFINITY;
-    consider(std::move(run), step_now > engine.options().resim_step_m);
+    consider(std::move(run), engine.searches_coarse(step_now));
     return f;
   };
   auto trimmed = [&] {
@@ -252,7 +250,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
                                 const TimeSearchOptions& options, const StartState& start,
                                 LatticeRuns* memo) {
   TimeSearchResult coarse = search_for_time(engine, target, options, start, memo);
-  if (coarse.converged || !(options.search_step_m > engine.options().resim_step_m)) return coarse;
+  if (coarse.converged || !engine.searches_coarse(options.search_step_m)) return coarse;
   // A coarse run's program is decided on its own re-simulation (held cruises, coasting instead
   // of braking holds), so where those decisions flip its running time can differ from the fine
   // run's by seconds, and a time in such a place can be out of the coarse search's reach (A5 ->
@@ -472,7 +470,7 @@ bool trim_to_time(const SectionEngine& engine, double target, double tolerance_s
     return true;
   }
   const double fine_m = engine.options().resim_step_m;
-  if (search_step_m > fine_m && from_optimum && run_arrives(run.sim)) {
+  if (engine.searches_coarse(search_step_m) && from_optimum && run_arrives(run.sim)) {
     TimeSearchResult coarse = result;
     coarse.run.sim = engine.simulate(run.program, run.start, search_step_m);
     ++coarse.trim_iterations;
