@@ -1,5 +1,6 @@
 #include "policy/advisor.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,19 @@
 namespace ecorail::policy {
 
 namespace {
+
+// The energy to go, cost_to_go - lambda * time_to_go: a difference of two numbers of millions of
+// joules, so a difference within the rounding of its operands (a few units in the last place)
+// is no energy at all (on the final braking curve the two are equal, but came out 9.3e-10 J
+// apart) and is reported as 0.
+double energy_to_go_J(double cost_to_go_J, double time_price_J) {
+  constexpr double kRoundingUlps = 16.0;
+  const double difference = cost_to_go_J - time_price_J;
+  const double scale = std::max(std::abs(cost_to_go_J), std::abs(time_price_J));
+  return std::abs(difference) <= kRoundingUlps * std::numeric_limits<double>::epsilon() * scale
+             ? 0.0
+             : difference;
+}
 
 // Preference among controls whose look-ahead scores tie (several controls clamped onto the same
 // braking curve, or hold and traction on a limit): the least traction first, so the advice on a
@@ -144,7 +158,7 @@ Advice Advisor::advise(int layer, double s_m, double v_ms) const {
   best.force_N = probe.mean_force_N;
   best.cost_to_go_J = best_q;
   best.time_to_go_s = best_t;
-  best.energy_to_go_J = found ? best_q - L.lambda_J_per_s * best_t : dp::kInfeasible;
+  best.energy_to_go_J = found ? energy_to_go_J(best_q, L.lambda_J_per_s * best_t) : dp::kInfeasible;
   return best;
 }
 

@@ -169,9 +169,7 @@ TEST(Advisor, AdviceAtTheStartOnTheBrakingCurveAndAtTheStop) {
   EXPECT_EQ(late.control, physics::Control::MaxBrake);
   EXPECT_EQ(late.regime, physics::Regime::FullBrake);
   EXPECT_NEAR(late.force_N, -166e3, 1.0);
-  // No traction to go: energy_to_go is cost_to_go - lambda * time_to_go, a difference of two
-  // numbers of millions of joules, so it is 0 up to the rounding of that subtraction.
-  EXPECT_NEAR(late.energy_to_go_J, 0.0, 1e-12 * late.cost_to_go_J);
+  EXPECT_DOUBLE_EQ(late.energy_to_go_J, 0.0);
   const policy::Advice stop = advisor.advise(f.table.route_length_m, 0.0);
   EXPECT_EQ(stop.cost_to_go_J, 0.0);
 }
