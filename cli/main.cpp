@@ -1,13 +1,11 @@
 // ecorail: energy-optimal train driving. See README.md for the commands.
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
-#include "cli/wait_policy.hpp"
 #include "data/version.hpp"
 
+// Waiting OpenMP threads yield their core unless OMP_WAIT_POLICY says otherwise; the program
+// runs as it is, without re-executing itself (cli/wait_policy.hpp).
 int main(int argc, char** argv) {
-  // Waiting OpenMP threads yield their core: two threads are then never slower than one on a
-  // busy machine (cli/wait_policy.hpp).
-  ecorail::cli::prefer_passive_openmp_waits(argv);
   CLI::App app{"ecorail: energy-optimal driving of metro trains"};
   app.require_subcommand(1);
   app.set_version_flag("--version", ecorail::data::version_string());

@@ -1,16 +1,25 @@
 #include "cli/wait_policy.hpp"
 
-#include <unistd.h>
+#include <unistd.h>  // environ
 
 #include <cstdlib>
+#include <cstring>
 
-namespace ecorail::cli {
-
-void prefer_passive_openmp_waits(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;  // the user's choice stands
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  // Still here: the re-execution failed; run on as we are (the policy only affects speed).
+// The C library's getenv, with one default (see cli/wait_policy.hpp). It reads environ as the
+// C library does and allocates nothing, so it is safe as early as libgomp's initialiser calls
+// it.
+extern "C" char* getenv(const char* name) noexcept {
+  const std::size_t length = std::strlen(name);
+  if (length == 0 || std::strchr(name, '=') != nullptr) return nullptr;
+  if (environ != nullptr) {
+    for (char** entry = environ; *entry != nullptr; ++entry) {
+      if (std::strncmp(*entry, name, length) == 0 && (*entry)[length] == '=') {
+        return *entry + length + 1;
+      }
+    }
+  }
+  if (std::strcmp(name, "OMP_WAIT_POLICY") == 0) {
+    return const_cast<char*>(ecorail::cli::kDefaultOpenMPWaitPolicy);
+  }
+  return nullptr;
 }
-
-}  // namespace ecorail::cli
