@@ -37,7 +37,7 @@ struct CalibrateArgs {
   std::string loss = "cauchy";
   double loss_scale = 2.5;
   int segment_rows = 10;
-  int max_iterations = 100;
+  int max_iterations = fitting::CalibrationOptions{}.max_iterations;  // per pass
   int threads = 1;
   bool brief = false;
   bool no_accel_limits = false;
@@ -163,13 +163,15 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--segment-rows", args->segment_rows,
                   "rows per multiple-shooting segment of the output-error fit (default 10)");
   cmd->add_option("--max-iterations", args->max_iterations,
-                  "Ceres iterations per fit (default 100); a fit that ends without convergence "
-                  "is an error and nothing is written");
+                  "Ceres iterations per pass of each fit; a fit that ends without convergence "
+                  "is an error and nothing is written")
+      ->capture_default_str();
   cmd->add_option("--threads", args->threads, "threads for Ceres (default 1)");
   cmd->add_flag("--brief", args->brief, "print the one-line report only");
   cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->add_flag("--no-accel-limits", args->no_accel_limits,
                 "do not apply the base train's acceleration limits to the logged forces");
+  input_files(cmd, {"--log", "--train"});
   cmd->callback([args] { run_calibrate(*args); });
 }
 

@@ -54,18 +54,34 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
                              " fit did not converge: nothing written");
   }
 
+  // The train the fit makes, read back through the loader `solve` uses: a fit that converged
+  // to an envelope no run can use (forces all 0, a train that cannot start) is bad input, and
+  // neither file is written.
+  physics::Train t = base;
+  double top_kmh = units::ms_to_kmh(base.max_speed_ms);
+  for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
+  const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
+  if (kind == EnvelopeKind::Traction) {
+    t.traction = env;
+  } else {
+    t.braking = env;
+  }
+  const std::string toml = data::train_to_toml(t);
+  const std::string label =
+      a.out.empty() || data::is_stdout_path(a.out) ? "the fitted train" : a.out;
+  try {
+    data::parse_train_toml(toml, label);
+  } catch (const data::InputError& e) {
+    throw data::InputError(a.points, 0, "force_kN",
+                           "points whose fitted " + std::string(a.kind) +
+                               " envelope makes a train the program can run; the " +
+                               std::string(form_name(written)) + " fit gives one that " + label +
+                               " would refuse (field '" + e.field() + "': " + e.expected() +
+                               "); nothing written");
+  }
+
   data::OutputBatch batch;  // both files or neither
   if (!a.out.empty()) {
-    physics::Train t = base;
-    double top_kmh = units::ms_to_kmh(base.max_speed_ms);
-    for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
-    const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
-    if (kind == EnvelopeKind::Traction) {
-      t.traction = env;
-    } else {
-      t.braking = env;
-    }
-    const std::string toml = data::train_to_toml(t);
     batch.add(a.out, [&](std::ostream& out) { out << toml; });
   }
   if (!a.json.empty()) {
@@ -102,6 +118,7 @@ void add_fit_envelope_command(CLI::App& app) {
   cmd->add_option("--form", args->form,
                   "form written: best (lower BIC), piecewise or power (default best)")
       ->check(CLI::IsMember({"best", "piecewise", "power"}));
+  input_files(cmd, {"--points", "--train"});
   cmd->callback([args] { run_fit_envelope(*args); });
 }
 

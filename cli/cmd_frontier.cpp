@@ -99,7 +99,8 @@ void run_frontier(const FrontierArgs& a) {
     throw data::InputError("command line", 0, "--tmax", "a time above --tmin");
   }
   if (!a.all && (a.problem.from.empty() || a.problem.to.empty())) {
-    throw data::InputError("command line", 0, "--from/--to", "a section, or --all");
+    throw data::InputError("command line", 0, a.problem.from.empty() ? "--from" : "--to",
+                           "a section (--from and --to), or --all");
   }
   ProblemOptions line_only = a.problem;
   line_only.from.clear();

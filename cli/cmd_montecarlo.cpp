@@ -474,6 +474,7 @@ void add_montecarlo_command(CLI::App& app) {
                   "write P_lateness.svg, P_energy.svg and P_punctuality.svg");
   CLI::App* merge = cmd->add_subcommand("merge", "combine shard JSONs into the whole run");
   merge->add_option("shards", args->merge_files, "shard JSON files")->required();
+  input_files(merge, {"shards"});
   merge->add_option("--json", args->json, "write the merged statistics (JSON)");
   merge->add_option("--csv", args->csv, "write one row per day (CSV)");
   merge->add_option("--svg-prefix", args->svg_prefix,

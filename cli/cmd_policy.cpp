@@ -10,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
+#include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "cli/progress.hpp"
 #include "data/atomic_file.hpp"
@@ -55,7 +56,8 @@ void print_layers(const policy::PolicyTable& t) {
 
 void run_write(const PolicyArgs& a) {
   if (a.problem.from.empty() || a.problem.to.empty()) {
-    throw data::InputError("command line", 0, "--from/--to", "both stations of the section");
+    throw data::InputError("command line", 0, a.problem.from.empty() ? "--from" : "--to",
+                           "both stations of the section (--from and --to)");
   }
   if (!(a.time_s > 0.0)) {
     throw data::InputError("command line", 0, "--time", "a running time in seconds > 0");
@@ -210,6 +212,7 @@ void add_policy_command(CLI::App& app) {
   auto* inspect = cmd->add_option("--inspect", args->inspect,
                                   "read a policy table, check it against --line/--train, print it");
   inspect->excludes(time)->excludes(out)->excludes(csv)->excludes(ladder);
+  input_files(cmd, {"--inspect"});
   cmd->add_flag("--quiet", args->quiet, "no progress line on stderr");
   cmd->add_option("--at", args->at, "with --inspect: advice at S_M,V_KMH (repeatable)")
       ->needs(inspect);

@@ -87,7 +87,9 @@ void run_solve(const SolveArgs& a, const CLI::App& cmd) {
   {
     ProblemOptions line_only = a.problem;
     line_only.from.clear();
-    const std::vector<std::string> stops = run_stops(load_problem(line_only).line, a.problem);
+    const data::Line line = load_problem(line_only).line;
+    const std::vector<std::string> stops = run_stops(line, a.problem);
+    check_gtfs_stops(a.outputs, line, stops);
     if (stops.size() > 2) {
       run_journey(a.problem, a.journey, a.outputs, a.time_s, a.full_report, stops);
       return;
@@ -133,7 +135,7 @@ void run_solve(const SolveArgs& a, const CLI::App& cmd) {
                                         {{"time_s", a.time_s},
                                          {"min_regime_m", options.min_regime.min_length_m},
                                          {"min_regime_s", options.min_regime.min_duration_s}});
-  write_outputs(a.outputs, report, timeline, title, summary_rows(s), &trip);
+  write_outputs(a.outputs, report, timeline, title, summary_rows(s), &trip, &p.line);
 }
 
 }  // namespace
@@ -171,6 +173,7 @@ void add_solve_command(CLI::App& app) {
       ->capture_default_str();
   add_output_options(cmd, args->outputs);
   add_gtfs_options(cmd, args->outputs);
+  input_files(cmd, {"--journey"});
   cmd->callback([args, cmd] { run_solve(*args, *cmd); });
 }
 

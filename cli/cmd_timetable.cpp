@@ -273,6 +273,7 @@ struct FleetSetup {
   timetable::FleetProblem problem;
   timetable::EnergyModelOptions model;
   std::vector<std::string> stops;
+  data::Line line;  // its stations' coordinates locate the GTFS stops
   std::vector<double> positions_m;
   std::unique_ptr<dp::SectionLibrary> library;  // kept for pattern optimisation
   timetable::PatternTrip pattern;
@@ -304,6 +305,7 @@ FleetSetup setup(const TimetableArgs& a) {
   const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;
   s.stops = data::stops_between(p.line, from, to);
   if (s.stops.size() < 2) bad("--to", "a station other than --from");
+  check_gtfs_stops(a.gtfs, s.line = p.line, s.stops);
   dp::SectionLibraryOptions lib_options;
   lib_options.engine = engine_options(a.problem);
   s.library = std::make_unique<dp::SectionLibrary>(
@@ -364,7 +366,7 @@ void write_fleet_outputs(const TimetableArgs& a, const FleetSetup& s,
       number.insert(0, width - number.size(), '0');
       trips.emplace_back("train-" + number, tt.train_trip(k));
     }
-    add_gtfs_outputs(batch, a.gtfs, trips);
+    add_gtfs_outputs(batch, a.gtfs, trips, s.line);
   }
   if (!a.csv.empty())
     batch.add(a.csv, [&](std::ostream& o) { output::write_timetable_csv(o, tt); });
@@ -572,6 +574,7 @@ void add_timetable_command(CLI::App& app) {
   ev->add_option("--nearest", eval_args.nearest,
                  "with --peak: the timetable nearest (least squares) to class headways "
                  "PEAK:OFFPEAK (s), e.g. 149:331.5");
+  input_files(ev, {"--headways", "--departures", "--power-supply"});
   ev->callback([] { run_evaluate(eval_args); });
   auto* op = cmd->add_subcommand("optimise", "headways that minimise the substation energy");
   add_fleet_options(op, opt_args);
@@ -588,6 +591,7 @@ void add_timetable_command(CLI::App& app) {
   op->add_flag("--per-train-patterns", opt_args.per_train_patterns,
                "each train its own dwells and running times (implies --optimise pattern; "
                "power-flow and sections models)");
+  input_files(op, {"--power-supply"});
   op->callback([op] {
     opt_args.optimise_given = op->get_option("--optimise")->count() > 0;
     run_optimise(opt_args);

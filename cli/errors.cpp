@@ -1,5 +1,7 @@
 #include "cli/errors.hpp"
 
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -30,9 +32,83 @@ std::string time_message(const dp::InfeasibleTimeError& e) {
   return text;
 }
 
+// A whole decimal number, optionally signed, within [lowest, highest]; CLI11's conversion then
+// reads the same value.
+std::string integer_problem(const std::string& text, bool is_unsigned) {
+  std::string digits = text;
+  if (!digits.empty() && digits.front() == '+') digits.erase(0, 1);
+  const bool negative = !digits.empty() && digits.front() == '-';
+  const std::string magnitude = negative ? digits.substr(1) : digits;
+  const bool all_digits =
+      !magnitude.empty() && magnitude.find_first_not_of("0123456789") == std::string::npos;
+  const std::string range = is_unsigned ? "from 0 to 18446744073709551615"
+                                        : "from -9223372036854775808 to 9223372036854775807";
+  if (!all_digits || (negative && is_unsigned)) {
+    return "a whole decimal number " + range + "; got '" + text + "'";
+  }
+  bool fits = false;
+  if (is_unsigned) {
+    std::uint64_t v = 0;
+    const auto [end, ec] =
+        std::from_chars(magnitude.data(), magnitude.data() + magnitude.size(), v);
+    fits = ec == std::errc() && end == magnitude.data() + magnitude.size();
+  } else {
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    fits = ec == std::errc() && end == digits.data() + digits.size();
+  }
+  return fits ? "" : "a whole number " + range + "; got '" + text + "'";
+}
+
+// The same number without leading zeros (CLI11 would read 010 as octal).
+std::string decimal(const std::string& text) {
+  std::string sign, digits = text;
+  if (!digits.empty() && (digits.front() == '+' || digits.front() == '-')) {
+    if (digits.front() == '-') sign = "-";
+    digits.erase(0, 1);
+  }
+  const auto first = digits.find_first_not_of('0');
+  digits = first == std::string::npos ? "0" : digits.substr(first);
+  return digits == "0" ? digits : sign + digits;
+}
+
 }  // namespace
 
+void throw_on_flag(const std::string& why, std::initializer_list<FieldFlag> flags) {
+  for (const FieldFlag& f : flags) {
+    const std::string field = f.field;
+    if (why.rfind(field, 0) != 0) continue;
+    std::string rest = why.substr(field.size());
+    for (const char* lead : {": expected ", ": ", " must be ", " must "}) {
+      if (rest.rfind(lead, 0) == 0) {
+        rest.erase(0, std::string(lead).size());
+        break;
+      }
+    }
+    throw data::InputError("command line", 0, f.flag, rest);
+  }
+  throw InvalidOptionsError(why);
+}
+
+void parse_integers_strictly(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type != "INT" && type != "UINT") continue;
+    const bool is_unsigned = type == "UINT";
+    option->transform(CLI::Validator(
+        [is_unsigned](std::string& text) {
+          const std::string problem = integer_problem(text, is_unsigned);
+          if (!problem.empty()) return "expected " + problem;
+          text = decimal(text);
+          return std::string();
+        },
+        "", ""));
+  }
+  for (CLI::App* sub : app.get_subcommands({})) parse_integers_strictly(*sub);
+}
+
 int run_reporting_errors(CLI::App& app, int argc, char** argv) {
+  parse_integers_strictly(app);
   // CLI11's own messages get the program's prefix and stay on one line.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("ecorail: error: ") + e.what() + " (see --help)\n";
@@ -60,6 +136,9 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
   } catch (const policy::LadderTimeError& e) {
     const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
     return fail(2, data::InputError("command line", 0, flag, time_message(e)).what());
+  } catch (const policy::LadderRungError& e) {
+    const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
+    return fail(2, data::InputError("command line", 0, flag, e.what()).what());
   } catch (const dp::InfeasibleTimeError& e) {
     return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
   } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short

@@ -24,6 +24,29 @@ void require_valid(const Options& options) {
   if (!options.IsValid(&why)) throw InvalidOptionsError(why);
 }
 
+// Which command-line flag sets which field of a library options struct.
+struct FieldFlag {
+  const char* field;  // as IsValid names it, e.g. "braking_m_s2"
+  const char* flag;   // e.g. "--braking"
+};
+
+// An IsValid message ("field: expected ..." or "field must ...") as the InputError of the one
+// flag that set the field (exit 2): "command line: field '--braking': expected 0 (the train's)
+// to 10 m/s^2". A field none of flags sets is reported as the message says.
+[[noreturn]] void throw_on_flag(const std::string& why, std::initializer_list<FieldFlag> flags);
+
+// Checks options like require_valid, naming the flag of the field at fault (throw_on_flag).
+template <typename Options>
+void require_valid_flags(const Options& options, std::initializer_list<FieldFlag> flags) {
+  std::string why;
+  if (!options.IsValid(&why)) throw_on_flag(why, flags);
+}
+
+// Every integer option of app and its subcommands reads a whole decimal number within its type
+// or is refused (exit 2): CLI11 alone would read 2^64 as 2^64 - 1, -1 as 2^64 - 1 for an
+// unsigned option, and 010 as octal 8.
+void parse_integers_strictly(CLI::App& app);
+
 // Parses the command line and runs the chosen command; prints any error as one line and
 // returns the exit code (0 on success).
 int run_reporting_errors(CLI::App& app, int argc, char** argv);

@@ -183,7 +183,7 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
                                  {"traction_energy_kJ", units::J_to_kJ(sol.traction_work_J)},
                                  {"regen_energy_kJ", units::J_to_kJ(sol.regen_J)}};
   const physics::Trip trip = dp::journey_trip(sol, routes, 0.0, p.train.regen_efficiency);
-  write_outputs(outputs, report, timeline, title, summary, &trip);
+  write_outputs(outputs, report, timeline, title, summary, &trip, &p.line);
 }
 
 }  // namespace ecorail::cli

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "cli/errors.hpp"
+#include "cli/output_options.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
@@ -116,6 +117,7 @@ void add_plan_source_options(CLI::App* cmd, std::string& plan_file, bool& refere
   cmd->add_flag("--reference", reference,
                 "the 2.1 plan: 30 s dwells, optimal split of 1726 s, 100 trains uniform over "
                 "63900 s");
+  input_files(cmd, {"--plan"});
 }
 
 void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& frontier_span_s,
@@ -126,6 +128,7 @@ void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& fro
   cmd->add_option("--line", problem.line_path, "line (default: the embedded reference line)");
   cmd->add_option("--train-file", problem.train_path,
                   "train TOML or TTOBench JSON (default: the reference train)");
+  input_files(cmd, {"--line", "--train-file"});
   cmd->add_option("--ds", problem.ds_m, "grid position step in m")->capture_default_str();
   cmd->add_option("--dv", problem.dv_kmh, "grid speed step in km/h")->capture_default_str();
   cmd->add_option("--threads", problem.threads, "OpenMP threads (default: all cores)");

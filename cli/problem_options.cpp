@@ -5,6 +5,7 @@
 #include <iostream>
 #include <string>
 
+#include "cli/output_options.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/line_loader.hpp"
@@ -47,6 +48,7 @@ void add_problem_options(CLI::App* cmd, ProblemOptions& o, bool stations_require
                   "file or a TTOBench track JSON (default: the embedded reference line)");
   cmd->add_option("--train", o.train_path,
                   "train TOML file or TTOBench train JSON (default: the reference train)");
+  input_files(cmd, {"--line", "--train"});
   cmd->add_option("--curve-resistance", o.curve_resistance,
                   "curve resistance formula: 600/R, or roeckl (500/(R-30) from 300 m, "
                   "650/(R-55) below)")

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/errors.hpp"
 #include "cli/output_options.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
@@ -37,7 +38,10 @@ service::ServiceOptions service_options(const ServiceArgs& a) {
   else
     bad("--follower", "supervise or reoptimise; got '" + a.follower + "'");
   std::string why;
-  if (!o.IsValid(&why)) bad("--train-length/--safety-margin/--braking", why);
+  if (!o.IsValid(&why))
+    throw_on_flag(why, {{"train_length_m", "--train-length"},
+                        {"safety_margin_m", "--safety-margin"},
+                        {"braking_m_s2", "--braking"}});
   return o;
 }
 

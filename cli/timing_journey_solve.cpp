@@ -155,7 +155,7 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
                                  {"windows_met", sol.windows_met ? "true" : "false"}};
   const physics::Trip trip = dp::journey_trip(
       sol.journey, sol.routes, sol.parts.front().departure_s, p.train.regen_efficiency);
-  write_outputs(outputs, report, timeline, title, summary, &trip);
+  write_outputs(outputs, report, timeline, title, summary, &trip, &p.line);
 }
 
 }  // namespace ecorail::cli

@@ -5,12 +5,16 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include "data/input_error.hpp"
 
 namespace ecorail::data {
 
@@ -56,6 +60,38 @@ void link_anonymous(const std::filesystem::path& fd_name, const std::filesystem:
   }
 }
 
+// An input of this run: the file's identity when it existed at registration (device and inode,
+// so that any spelling or hard link of it matches) and its canonical path.
+struct RegisteredInput {
+  std::string what;
+  std::filesystem::path canonical;
+  bool has_identity = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+};
+
+std::mutex inputs_mutex;
+std::vector<RegisteredInput> registered_inputs;
+std::atomic<bool> register_reads{false};
+
+std::filesystem::path canonical_of(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto absolute = std::filesystem::absolute(path, ec);
+  if (ec) return path.lexically_normal();
+  const auto canonical = std::filesystem::weakly_canonical(absolute, ec);
+  return ec ? absolute.lexically_normal() : canonical;
+}
+
+// An output that would replace an input of the run is bad input (exit 2), whenever it is found.
+void check_not_an_input(const std::filesystem::path& path) {
+  const std::string what = input_read_as(path);
+  if (!what.empty()) {
+    throw InputError(
+        path.string(), 0, "",
+        "an output other than an input of this run (" + what + "); the input was left as it is");
+  }
+}
+
 void check_target(const std::filesystem::path& path) {
   const std::string problem = output_target_problem(path);
   if (!problem.empty()) throw std::runtime_error(problem);
@@ -63,9 +99,60 @@ void check_target(const std::filesystem::path& path) {
 
 }  // namespace
 
+void register_input(const std::string& what, const std::filesystem::path& path) {
+  if (path.empty() || is_stdout_path(path)) return;
+  RegisteredInput input{what, canonical_of(path)};
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    input.has_identity = true;
+    input.device = st.st_dev;
+    input.inode = st.st_ino;
+  }
+  const std::lock_guard<std::mutex> lock(inputs_mutex);
+  for (const RegisteredInput& known : registered_inputs) {
+    const bool same = input.has_identity && known.has_identity
+                          ? known.device == input.device && known.inode == input.inode
+                          : known.canonical == input.canonical;
+    if (same) return;  // the first name it was given is the one reported
+  }
+  registered_inputs.push_back(std::move(input));
+}
+
+void set_register_files_read(bool on) {
+  register_reads = on;
+}
+
+bool register_files_read() {
+  return register_reads;
+}
+
+std::string input_read_as(const std::filesystem::path& path) {
+  if (path.empty() || is_stdout_path(path)) return "";
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  const std::filesystem::path canonical = canonical_of(path);
+  const std::lock_guard<std::mutex> lock(inputs_mutex);
+  for (const RegisteredInput& input : registered_inputs) {
+    const bool same = exists && input.has_identity
+                          ? st.st_dev == input.device && st.st_ino == input.inode
+                          : canonical == input.canonical;
+    if (same) return input.what;
+  }
+  return "";
+}
+
+void clear_registered_inputs() {
+  const std::lock_guard<std::mutex> lock(inputs_mutex);
+  registered_inputs.clear();
+}
+
 std::string output_target_problem(const std::filesystem::path& path) {
   if (is_stdout_path(path)) return "";
   if (path.empty()) return "an empty path";
+  if (const std::string what = input_read_as(path); !what.empty()) {
+    return "'" + path.string() + "' is an input of this run (" + what +
+           "); an output never replaces an input";
+  }
   std::error_code ec;
   const auto st = std::filesystem::symlink_status(path, ec);
   if (!ec && std::filesystem::exists(st)) {
@@ -119,6 +206,7 @@ void OutputBatch::add_produced(const std::filesystem::path& path,
                                const std::function<void(const std::filesystem::path&)>& produce) {
   std::filesystem::path tmp = temp_for(path);
   int fd = -1;
+  check_not_an_input(path);
   try {
     check_target(path);
     if (!is_stdout_path(path)) fd = anonymous_temp(path, &tmp);
@@ -157,6 +245,7 @@ void OutputBatch::add_produced(const std::filesystem::path& path,
 
 void OutputBatch::commit() {
   // Everything is written; only the targets may have changed since they were checked.
+  for (const auto& e : entries_) check_not_an_input(e.target);
   for (const auto& e : entries_) {
     const std::string problem = output_target_problem(e.target);
     if (!problem.empty())

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 
 namespace ecorail::data {
@@ -106,6 +107,13 @@ std::size_t CsvTable::column(const std::string& name) const {
                    "a column named " + in_quotes(name) + " in the header; got columns " + found);
 }
 
+bool CsvTable::has_column(const std::string& name) const {
+  for (const auto& h : header_) {
+    if (h == name) return true;
+  }
+  return false;
+}
+
 const std::string& CsvTable::text(const CsvRow& row, std::size_t column) const {
   return row.fields.at(column);
 }
@@ -191,6 +199,7 @@ std::string read_text_file(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(status)) {
     throw InputError(path.string(), 0, "", "a regular file; got a directory or special file");
   }
+  if (register_files_read()) register_input("a file this run reads", path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "", "a readable file; cannot open it");
   std::ostringstream out;

@@ -30,6 +30,8 @@ class CsvTable {
   const std::vector<CsvRow>& rows() const { return rows_; }
   // Index of the named column; an InputError naming the file and the column when absent.
   std::size_t column(const std::string& name) const;
+  // Whether the header has the named column (for optional columns).
+  bool has_column(const std::string& name) const;
   // The field of a row in a column, as text or as a finite number (InputError otherwise).
   const std::string& text(const CsvRow& row, std::size_t column) const;
   double number(const CsvRow& row, std::size_t column) const;
@@ -53,7 +55,9 @@ double parse_clock_s(const std::string& text, TwoFieldClock two_fields, const st
                      int row, const std::string& field, const std::string& expected);
 // A number for messages: up to 10 significant digits, no trailing zeros ("355", "23803.34").
 std::string format_number(double value);
-// Reads a whole file as text; a missing, unreadable or non-regular file is an InputError.
+// Reads a whole file as text; a missing, unreadable or non-regular file is an InputError. With
+// register_files_read() on (data/atomic_file.hpp) the file becomes an input of the run, which
+// no output may replace.
 std::string read_text_file(const std::filesystem::path& path);
 
 }  // namespace ecorail::data

@@ -24,6 +24,7 @@ InputError::InputError(std::string file, int row, std::string field, const std::
     : std::runtime_error(format_message(file, row, field, expected)),
       file_(std::move(file)),
       row_(row),
-      field_(std::move(field)) {}
+      field_(std::move(field)),
+      expected_(expected) {}
 
 }  // namespace ecorail::data

@@ -14,11 +14,15 @@ class InputError : public std::runtime_error {
   const std::string& file() const { return file_; }
   int row() const { return row_; }
   const std::string& field() const { return field_; }
+  // What was expected, as given (without the file, row and field): for a message that wraps
+  // this one without saying "expected" twice.
+  const std::string& expected() const { return expected_; }
 
  private:
   std::string file_;
   int row_;
   std::string field_;
+  std::string expected_;
 };
 
 }  // namespace ecorail::data

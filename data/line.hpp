@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,11 @@ struct Station {
   std::string name;
   double km_post_m = 0.0;
   int source_row = 0;  // row in the file it came from, for error messages
+  // WGS 84 position (optional columns lat, lon of the stations table; NaN when not given). Only
+  // exports that locate stops on a map use it (GTFS stops.txt); it changes no run.
+  double lat_deg = std::numeric_limits<double>::quiet_NaN();
+  double lon_deg = std::numeric_limits<double>::quiet_NaN();
+  bool has_coordinates() const { return lat_deg == lat_deg && lon_deg == lon_deg; }
 };
 
 struct IntervalRow {

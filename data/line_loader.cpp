@@ -37,12 +37,38 @@ std::string in_quotes(const std::string& s) {
 
 // ---- CSV ----------------------------------------------------------------------------------
 
+// Latitude and longitude in degrees, both or neither, within their ranges (WGS 84).
+void set_coordinates(Station& s, double lat, double lon, const std::string& file, int row) {
+  if (!(lat >= -90.0 && lat <= 90.0)) {
+    throw InputError(file, row, "lat",
+                     "a latitude from -90 to 90 degrees; got " + format_number(lat));
+  }
+  if (!(lon >= -180.0 && lon <= 180.0)) {
+    throw InputError(file, row, "lon",
+                     "a longitude from -180 to 180 degrees; got " + format_number(lon));
+  }
+  s.lat_deg = lat;
+  s.lon_deg = lon;
+}
+
 std::vector<Station> stations_from_csv(const CsvTable& t) {
   const auto name_col = t.column("station");
   const auto km_col = t.column("km_post_m");
+  // Optional coordinates: both columns or neither; in a row both fields or neither.
+  const bool located = t.has_column("lat") || t.has_column("lon");
+  const std::size_t lat_col = located ? t.column("lat") : 0;
+  const std::size_t lon_col = located ? t.column("lon") : 0;
   std::vector<Station> out;
   for (const auto& row : t.rows()) {
-    out.push_back(Station{t.text(row, name_col), t.number(row, km_col), row.row});
+    Station s{t.text(row, name_col), t.number(row, km_col), row.row};
+    if (located && (!t.text(row, lat_col).empty() || !t.text(row, lon_col).empty())) {
+      if (t.text(row, lat_col).empty() || t.text(row, lon_col).empty()) {
+        throw InputError(t.file(), row.row, t.text(row, lat_col).empty() ? "lat" : "lon",
+                         "both lat and lon, or neither; got only one");
+      }
+      set_coordinates(s, t.number(row, lat_col), t.number(row, lon_col), t.file(), row.row);
+    }
+    out.push_back(std::move(s));
   }
   return out;
 }
@@ -218,14 +244,22 @@ Line line_from_toml(std::string_view text, const std::string& file) {
   for (std::size_t i = 0; i < stations.size(); ++i) {
     const int row = static_cast<int>(i + 1);
     const auto& t = *stations.get(i)->as_table();
-    toml_util::check_keys(t, {"name", "km_post_m"}, file, row, "");
+    toml_util::check_keys(t, {"name", "km_post_m", "lat", "lon"}, file, row, "");
     const toml::node* name = t.get("name");
     if (name == nullptr || !name->is_string()) {
       throw InputError(file, row, "name", "a string; got " + toml_util::describe(name));
     }
-    line.stations.push_back(Station{std::string(name->as_string()->get()),
-                                    toml_util::number(t.get("km_post_m"), file, row, "km_post_m"),
-                                    row});
+    Station s{std::string(name->as_string()->get()),
+              toml_util::number(t.get("km_post_m"), file, row, "km_post_m"), row};
+    if (t.get("lat") != nullptr || t.get("lon") != nullptr) {
+      if (t.get("lat") == nullptr || t.get("lon") == nullptr) {
+        throw InputError(file, row, t.get("lat") == nullptr ? "lat" : "lon",
+                         "both lat and lon, or neither; got only one");
+      }
+      set_coordinates(s, toml_util::number(t.get("lat"), file, row, "lat"),
+                      toml_util::number(t.get("lon"), file, row, "lon"), file, row);
+    }
+    line.stations.push_back(std::move(s));
   }
   line.gradients = rows_from_toml(root, kGradients, file);
   line.limits = rows_from_toml(root, kLimits, file);

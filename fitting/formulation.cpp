@@ -110,8 +110,11 @@ FitResult run_fit(Formulation& f, const FitSetup& setup) {
     ceres::Solve(so, problem.get(), &summary);
     dp::report_progress(setup.progress, setup.progress_stage, pass + 1, passes);
     if (pass == 0) out.initial_cost = summary.initial_cost;
-    out.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    out.last_pass_iterations = static_cast<int>(summary.iterations.size()) - 1;
+    out.iterations += out.last_pass_iterations;
   }
+  out.passes = passes;
+  out.max_iterations_per_pass = setup.max_iterations;
   out.value = params;
   out.sigma = sigma;
   out.final_cost = summary.final_cost;

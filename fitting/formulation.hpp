@@ -31,7 +31,7 @@ struct FitSetup {
   double loss_scale = 2.5;        // in noise standard deviations
   double discount_weight = 0.25;  // rows weighted less than this are reported as discounted
   int robust_passes = 2;
-  int max_iterations = 100;
+  int max_iterations = 500;  // per pass
   int num_threads = 1;
   // Called with (progress_stage, pass, passes) at every Ceres iteration and after each pass.
   dp::ProgressFn progress;
@@ -56,7 +56,10 @@ struct FitResult {
   double max_abs = 0.0;
   int discounted_residuals = 0;
   std::vector<DiscountedRow> discounted;
-  int iterations = 0;
+  int iterations = 0;            // over all passes
+  int passes = 0;                // plain pass plus robust passes
+  int last_pass_iterations = 0;  // of the final pass, whose termination is reported
+  int max_iterations_per_pass = 0;
   double initial_cost = 0.0;
   double final_cost = 0.0;
   bool converged = false;

@@ -45,6 +45,8 @@ PolicyTable build_policy_ladder(const dp::SectionEngine& engine, const PolicyIde
       found = dp::solve_for_time(engine, target, options.search);
     } catch (const dp::InfeasibleTimeError& e) {
       throw LadderTimeError(e, offset);
+    } catch (const dp::TimeRequestError& e) {
+      throw LadderRungError(e, offset);
     }
     PolicyLayer layer = build_policy_layer(engine, found.run.lambda);
     layer.time_offset_s = offset;

@@ -48,6 +48,18 @@ class LadderTimeError : public dp::InfeasibleTimeError {
   double offset_s_;
 };
 
+// Any other running time of a rung the engine cannot solve (a time longer than it solves
+// reliably): the cause's message, and which offset it was.
+class LadderRungError : public dp::TimeRequestError {
+ public:
+  LadderRungError(const dp::TimeRequestError& cause, double offset_s)
+      : dp::TimeRequestError(cause), offset_s_(offset_s) {}
+  double offset_s() const { return offset_s_; }
+
+ private:
+  double offset_s_;
+};
+
 // Who the table is for (written into its header and checked by the Advisor).
 struct PolicyIdentity {
   std::string line_name;
@@ -56,7 +68,8 @@ struct PolicyIdentity {
 };
 
 // The table with one layer per offset, in the order given. std::invalid_argument for invalid
-// options, LadderTimeError for a rung below the flat-out run.
+// options, LadderTimeError for a rung below the flat-out run, LadderRungError for any other
+// running time of a rung the engine cannot solve.
 PolicyTable build_policy_ladder(const dp::SectionEngine& engine, const PolicyIdentity& identity,
                                 const PolicyLadderOptions& options);
 

@@ -1,5 +1,6 @@
 // GTFS export: valid HH:MM:SS times (past 24 h too), each trip's stops in time order with
-// stop_sequence 1..n, exactly one row per stop and train, files all or none.
+// stop_sequence 1..n, exactly one row per stop and train, the whole feed (agency, calendar,
+// feed_info, located stops) or nothing, files all or none.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,6 +46,20 @@ int seconds_of(const std::string& hms) {
   return 3600 * h + 60 * m + s;
 }
 
+// A complete feed's options, every station of the rows below located.
+GtfsOptions feed() {
+  GtfsOptions o;
+  o.agency_name = "Test Metro";
+  o.agency_url = "https://metro.example";
+  o.agency_timezone = "Europe/Paris";
+  o.start_date = "20270104";
+  o.end_date = "20270108";
+  o.weekdays = {true, true, true, true, true, false, false};
+  double lat = 48.85;
+  for (const char* s : {"A", "B", "C", "A6", "A7", "A8"}) o.stop_locations[s] = {lat += 0.01, 2.35};
+  return o;
+}
+
 TEST(GtfsExport, TimesAreHoursMinutesSeconds) {
   EXPECT_EQ(gtfs_time(0.0), "00:00:00");
   EXPECT_EQ(gtfs_time(3661.4), "01:01:01");
@@ -63,7 +78,7 @@ TEST(GtfsExport, OneRowPerStopAndTrainInTimeOrder) {
       {"T1", "B", 7 * 3600.0 + 100.4, 7 * 3600.0 + 130.4},
       {"T2", "C", 7 * 3600.0 + 550.0, 7 * 3600.0 + 550.0},
   };
-  const GtfsTables t = gtfs_tables(rows);
+  const GtfsTables t = gtfs_tables(rows, feed());
   const auto st = csv(t.stop_times_txt);
   ASSERT_EQ(st.size(), 7u);
   EXPECT_EQ(st[0], (std::vector<std::string>{"trip_id", "arrival_time", "departure_time", "stop_id",
@@ -95,9 +110,78 @@ TEST(GtfsExport, OneRowPerStopAndTrainInTimeOrder) {
 }
 
 TEST(GtfsExport, BadRowsAreRefused) {
-  EXPECT_THROW(gtfs_tables({{"T", "A", 100.0, 90.0}}), std::invalid_argument);
-  EXPECT_THROW(gtfs_tables({{"T", "A", 0.0, 50.0}, {"T", "B", 40.0, 60.0}}), std::invalid_argument);
-  EXPECT_THROW(gtfs_tables({{"", "A", 0.0, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(gtfs_tables({{"T", "A", 100.0, 90.0}}, feed()), std::invalid_argument);
+  EXPECT_THROW(gtfs_tables({{"T", "A", 0.0, 50.0}, {"T", "B", 40.0, 60.0}}, feed()),
+               std::invalid_argument);
+  EXPECT_THROW(gtfs_tables({{"", "A", 0.0, 0.0}}, feed()), std::invalid_argument);
+}
+
+TEST(GtfsExport, AFeedWithoutAgencyDatesOrCoordinatesIsRefused) {
+  const std::vector<GtfsRow> rows{{"T", "A", 0.0, 0.0}, {"T", "B", 60.0, 60.0}};
+  EXPECT_NO_THROW(gtfs_tables(rows, feed()));
+  const std::vector<std::pair<const char*, void (*)(GtfsOptions&)>> broken{
+      {"agency_name", [](GtfsOptions& o) { o.agency_name.clear(); }},
+      {"agency_url", [](GtfsOptions& o) { o.agency_url = "metro.example"; }},
+      {"agency_timezone", [](GtfsOptions& o) { o.agency_timezone = "Paris time"; }},
+      {"start_date", [](GtfsOptions& o) { o.start_date = "20270231"; }},
+      {"end_date", [](GtfsOptions& o) { o.end_date = "2027-01-08"; }},
+      {"end_date", [](GtfsOptions& o) { o.end_date = "20261231"; }},
+      {"monday", [](GtfsOptions& o) { o.weekdays.fill(false); }},
+      {"feed_lang", [](GtfsOptions& o) { o.feed_lang = "e n"; }},
+  };
+  for (const auto& [field, spoil] : broken) {
+    GtfsOptions o = feed();
+    spoil(o);
+    try {
+      gtfs_tables(rows, o);
+      ADD_FAILURE() << field << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+  GtfsOptions o = feed();
+  o.stop_locations.erase("B");
+  try {
+    gtfs_tables(rows, o);
+    ADD_FAILURE() << "a stop without coordinates accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("stop_lat"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("none for B"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GtfsExport, DatesAreCalendarDays) {
+  EXPECT_TRUE(is_gtfs_date("20240229"));   // a leap year
+  EXPECT_FALSE(is_gtfs_date("20230229"));  // not one
+  EXPECT_FALSE(is_gtfs_date("21000229"));  // centuries are not, unless divisible by 400
+  EXPECT_TRUE(is_gtfs_date("20000229"));
+  EXPECT_FALSE(is_gtfs_date("20271301"));
+  EXPECT_FALSE(is_gtfs_date("2027011"));
+  EXPECT_FALSE(is_gtfs_date("2027O101"));
+}
+
+TEST(GtfsExport, TheFeedsOwnTables) {
+  const GtfsTables t = gtfs_tables({{"T", "A", 0.0, 0.0}, {"T", "B", 60.0, 60.0}}, feed());
+  const auto agency = csv(t.agency_txt);
+  ASSERT_EQ(agency.size(), 2u);
+  EXPECT_EQ(agency[1][1], "Test Metro");
+  EXPECT_EQ(agency[1][2], "https://metro.example");
+  EXPECT_EQ(agency[1][3], "Europe/Paris");
+  const auto calendar = csv(t.calendar_txt);
+  ASSERT_EQ(calendar.size(), 2u);
+  EXPECT_EQ(calendar[1], (std::vector<std::string>{"service", "1", "1", "1", "1", "1", "0", "0",
+                                                   "20270104", "20270108"}));
+  const auto trips = csv(t.trips_txt);
+  EXPECT_EQ(trips[1][1], calendar[1][0]);  // every trip runs on the calendar's service
+  const auto stops = csv(t.stops_txt);
+  ASSERT_EQ(stops.size(), 3u);
+  EXPECT_EQ(stops[0][2], "stop_lat");
+  EXPECT_EQ(stops[1][2], "48.860000");
+  EXPECT_EQ(stops[2][3], "2.350000");
+  const auto info = csv(t.feed_info_txt);
+  ASSERT_EQ(info.size(), 2u);
+  EXPECT_EQ(info[1][0], "Test Metro");
+  EXPECT_EQ(info[1][2], "en");
 }
 
 TEST(GtfsExport, RowsOfAJourneyTrip) {
@@ -125,7 +209,7 @@ TEST(GtfsExport, RowsOfAJourneyTrip) {
   EXPECT_NEAR(rows[1].arrival_s, 7 * 3600.0 + sims[0].running_time_s, 1e-6);
   EXPECT_NEAR(rows[1].departure_s - rows[1].arrival_s, 45.0, 1e-6);
   EXPECT_NEAR(rows[2].arrival_s, rows[1].departure_s + sims[1].running_time_s, 1e-6);
-  const auto st = csv(gtfs_tables(rows).stop_times_txt);
+  const auto st = csv(gtfs_tables(rows, feed()).stop_times_txt);
   ASSERT_EQ(st.size(), 4u);
   EXPECT_EQ(st[1][2], "07:00:00");
 }
@@ -135,14 +219,15 @@ class GtfsFiles : public ecorail::testing::TempDirTest {};
 TEST_F(GtfsFiles, AreWrittenTogether) {
   {
     data::OutputBatch batch;
-    add_gtfs_files(batch, dir_, {{"T1", "A", 0.0, 0.0}, {"T1", "B", 60.0, 60.0}});
+    add_gtfs_files(batch, dir_, {{"T1", "A", 0.0, 0.0}, {"T1", "B", 60.0, 60.0}}, feed());
     // Not committed: nothing is written.
   }
   EXPECT_FALSE(std::filesystem::exists(dir_ / "stop_times.txt"));
   data::OutputBatch batch;
-  add_gtfs_files(batch, dir_, {{"T1", "A", 0.0, 0.0}, {"T1", "B", 60.0, 60.0}});
+  add_gtfs_files(batch, dir_, {{"T1", "A", 0.0, 0.0}, {"T1", "B", 60.0, 60.0}}, feed());
   batch.commit();
-  for (const char* f : {"stops.txt", "routes.txt", "trips.txt", "stop_times.txt"}) {
+  for (const char* f : {"agency.txt", "stops.txt", "routes.txt", "trips.txt", "stop_times.txt",
+                        "calendar.txt", "feed_info.txt"}) {
     EXPECT_TRUE(std::filesystem::exists(dir_ / f)) << f;
   }
 }

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Command-line errors name the one flag at fault and say "expected" once: integers are read
+# strictly (a seed of 2^64 is refused, not clamped to 2^64 - 1; -1 for an unsigned flag, 0x10
+# and 1e3 for an integer are refused), a library option refused by its IsValid is reported on
+# the flag that set it, a ladder rung the engine cannot solve blames --lambda-ladder (not
+# --time), a missing station names --from or --to alone.
+set -uo pipefail
+source "$(dirname "$0")/lib/common.sh" "$@"
+
+# one_flag NEEDLE ARGS...: expect_error, and the message names one flag and says "expected" once.
+one_flag() {
+  expect_error "$@"
+  [ "$(grep -o expected stderr.txt | wc -l)" -le 1 ] ||
+    { echo "FAIL: 'expected' more than once: ${*:2}"; cat stderr.txt; fail=1; }
+  ! grep -q "field '--[a-z-]*/--" stderr.txt ||
+    { echo "FAIL: several flags named at once: ${*:2}"; cat stderr.txt; fail=1; }
+  ! grep -q "Options::" stderr.txt || { echo "FAIL: internal names: ${*:2}"; cat stderr.txt; fail=1; }
+}
+
+one_flag "--seed" timetable optimise --seed 18446744073709551616
+one_flag "--seed" timetable optimise --seed -1
+one_flag "--threads" solve --from A6 --to A7 --time 110 --threads 0x10
+one_flag "--threads" solve --from A6 --to A7 --time 110 --threads 1e3
+one_flag "--threads" solve --from A6 --to A7 --time 110 --threads 99999999999999999999
+one_flag "--lambda-ladder" policy --from A6 --to A7 --time 110 --lambda-ladder 0,1e308 --out p.bin
+one_flag "--braking" timetable evaluate --trains 2 --span 645 --separation --braking 11
+one_flag "--train-length" timetable evaluate --trains 2 --span 645 --separation --train-length 5000
+one_flag "--from" frontier --to A7
+one_flag "--to" policy --from A6 --time 110 --out p.bin
+
+# A leading zero is decimal, not octal: --trains 010 is ten trains.
+"$ecorail" timetable evaluate --from A6 --to A9 --trains 010 --span 1800 --headway 150:250 \
+  --trip-time 480 --csv tt.csv > /dev/null 2> err.txt || { echo "FAIL: --trains 010"; cat err.txt; fail=1; }
+[ -f tt.csv ] && [ "$(cut -d, -f1 tt.csv | sort -u | grep -c '^[0-9]')" -eq 10 ] ||
+  { echo "FAIL: --trains 010 is not ten trains"; fail=1; }
+exit "$fail"
