@@ -56,16 +56,7 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
 
   data::OutputBatch batch;  // both files or neither
   if (!a.out.empty()) {
-    physics::Train t = base;
-    double top_kmh = units::ms_to_kmh(base.max_speed_ms);
-    for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
-    const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
-    if (kind == EnvelopeKind::Traction) {
-      t.traction = env;
-    } else {
-      t.braking = env;
-    }
-    const std::string toml = data::train_to_toml(t);
+    const std::string toml = data::train_to_toml(train_with_envelope(base, points, fit, kind));
     batch.add(a.out, [&](std::ostream& out) { out << toml; });
   }
   if (!a.json.empty()) {
