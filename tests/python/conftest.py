@@ -14,12 +14,14 @@ CLI = os.environ.get("ECORAIL_CLI", "")
 SOURCE_DIR = os.environ.get("ECORAIL_SOURCE_DIR", "")
 
 
-def without_wall_times(value):
-    """A report without its wall-clock figures (*_wall_s): the only keys two runs may differ in."""
+def without_wall_times(value, also=()):
+    """A report without its wall-clock figures (keys *_wall_s, and the keys named in also): the
+    only keys two runs on the same inputs may differ in."""
     if isinstance(value, dict):
-        return {k: without_wall_times(v) for k, v in value.items() if not k.endswith("_wall_s")}
+        return {k: without_wall_times(v, also) for k, v in value.items()
+                if not k.endswith("_wall_s") and k not in also}
     if isinstance(value, list):
-        return [without_wall_times(v) for v in value]
+        return [without_wall_times(v, also) for v in value]
     return value
 
 
