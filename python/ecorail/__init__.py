@@ -50,6 +50,7 @@ from ._ecorail import (  # noqa: E402,F401
     EnvelopeFit,
     Frontier,
     Line,
+    MonteCarloResult,
     PolicyTable,
     Run,
     SolveError,
@@ -58,16 +59,24 @@ from ._ecorail import (  # noqa: E402,F401
     Train,
     __version__,
     calibrate,
+    delay,
     fit_envelope,
     frontier,
     journey,
     min_time,
+    montecarlo,
     policy_table,
     solve,
+    timetable,
 )
 
+# The submodules import as modules too: `import ecorail.timetable`, `from ecorail.delay import
+# recover`.
+_sys.modules[__name__ + ".timetable"] = timetable
+_sys.modules[__name__ + ".delay"] = delay
+
 __all__ = [
-    "Calibration", "EnvelopeFit", "Frontier", "Line", "PolicyTable", "Run", "SolveError",
-    "Summary", "Termination", "Train", "calibrate", "fit_envelope", "frontier", "journey",
-    "min_time", "policy_table", "solve",
+    "Calibration", "EnvelopeFit", "Frontier", "Line", "MonteCarloResult", "PolicyTable", "Run",
+    "SolveError", "Summary", "Termination", "Train", "calibrate", "delay", "fit_envelope",
+    "frontier", "journey", "min_time", "montecarlo", "policy_table", "solve", "timetable",
 ]

@@ -15,4 +15,6 @@ PYBIND11_MODULE(_ecorail, m) {
   bind_solve(m);
   bind_policy(m);
   bind_fitting(m);
+  bind_timetable(m);
+  bind_delay(m);
 }
