@@ -4,7 +4,9 @@
 // recovery::recover_delay; recovery::SectionRuns, recovery::MonteCarlo::run_days,
 // recovery::summarise and recovery::run_json (montecarlo's to_dict, the program's --json). Plans
 // from a timetable CSV (--plan) are the program's for now (docs/python.md).
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
@@ -15,6 +17,8 @@
 #include "recovery/monte_carlo_stats.hpp"
 #include "recovery/plan.hpp"
 #include "recovery/section_runs.hpp"
+#include "output/frontier_cache.hpp"
+#include "output/section_run_cache.hpp"
 
 namespace ecorail::python {
 
@@ -60,6 +64,14 @@ ReferencePlan reference_plan(const PyLine& line, const PyTrain& train, const Eng
   return r;
 }
 
+// The frontier cache the program uses (cache=True): cache_dir, or the program's default
+// directory ($XDG_CACHE_HOME/ecorail/frontiers) when it is None; cached entries are keyed by
+// line, train, grid and engine version and never trusted when stale.
+std::filesystem::path cache_directory(const py::object& cache_dir) {
+  if (cache_dir.is_none()) return output::FileFrontierStore::default_directory();
+  return std::string(py::str(py::module_::import("os").attr("fspath")(cache_dir)));
+}
+
 struct PyRecovery {
   recovery::DelayRecoveryResult result;
   PySummary summary;
@@ -68,7 +80,7 @@ struct PyRecovery {
 PyRecovery recover_py(const PyLine& line, const PyTrain& train, int train_number,
                       const std::string& station, double delay_s, double min_dwell_s,
                       int followers, double frontier_span_s, double ds_m, double dv_kmh,
-                      int threads) {
+                      int threads, bool cache, const py::object& cache_dir) {
   if (!std::isfinite(delay_s) || delay_s < 0.0 || delay_s > 86400.0) {
     bad_argument("delay_s", "a delay in seconds, 0 <= D <= 86400", std::to_string(delay_s));
   }
@@ -91,11 +103,14 @@ PyRecovery recover_py(const PyLine& line, const PyTrain& train, int train_number
     bad_argument("train_number", "a train from 1 to " + std::to_string(r.plan.trains.size()),
                  std::to_string(train_number));
   }
+  const std::filesystem::path dir = cache_directory(cache_dir);
+  output::FileFrontierStore store(dir);
   PyRecovery out;
   try {
     py::gil_scoped_release release;
     out.result = recovery::recover_delay(*r.library, r.plan, std::size_t(train_number - 1),
-                                         std::size_t(it - r.stops.begin()), delay_s, options);
+                                         std::size_t(it - r.stops.begin()), delay_s, options,
+                                         cache ? &store : nullptr);
   } catch (const recovery::DelayInputError& e) {
     bad_argument(e.field(), "input the recovery can use", e.what());
   }
@@ -116,7 +131,8 @@ PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, int days, s
                            double early_s, double run_early_s, double min_dwell_s,
                            double takeover_s, double punctual_s, double separation_s,
                            double knot_step_s, double step_s, double frontier_span_s,
-                           double ds_m, double dv_kmh, int threads, const py::object& progress) {
+                           double ds_m, double dv_kmh, int threads, bool cache,
+                           const py::object& cache_dir, const py::object& progress) {
   if (days < 1 || days > 100000000) bad_argument("days", "a number of days from 1 to 1e8", std::to_string(days));
   if (seed < 0) bad_argument("seed", "a seed >= 0", std::to_string(seed));
   recovery::MonteCarloOptions o;
@@ -143,11 +159,16 @@ PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, int days, s
   require_valid(o);
   const EngineArgs engine{ds_m, dv_kmh, "traction", "hold", threads};
   ReferencePlan r = reference_plan(line, train, engine, frontier_span_s);
+  const std::filesystem::path dir = cache_directory(cache_dir);
+  output::FileFrontierStore store(dir);
+  output::FileSectionRunStore run_store(dir / "section-runs");
   Interruptible guard(progress);
   const dp::ProgressFn check = guard.callback();
+  const auto wall0 = std::chrono::steady_clock::now();
   PyMonteCarlo out;
   guard.run([&] {
-    recovery::SectionRuns runs(*r.library, nullptr, o.knot_step_s, o.bin_step_s);
+    recovery::SectionRuns runs(*r.library, cache ? &store : nullptr, o.knot_step_s, o.bin_step_s,
+                               cache ? &run_store : nullptr);
     const recovery::MonteCarlo mc(*r.library, r.plan, o, runs);
     const recovery::DayRecord plan_day = mc.plan_day();
     std::vector<recovery::DayRecord> records =
@@ -200,6 +221,7 @@ PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, int days, s
     sm.statistics = out.statistics;
     sm.plan_traction_kJ = plan_day.traction_kJ;
     sm.plan_substation_kJ = plan_day.substation_kJ;
+    sm.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     out.summary = {sm.termination, sm.BriefReport(), sm.FullReport(), {}};
     return 0;
   });
@@ -262,11 +284,12 @@ void bind_delay(py::module_& m) {
             py::arg("train_number"), py::arg("station"), py::arg("delay_s"),
             py::arg("min_dwell_s") = 30.0, py::arg("followers") = 5,
             py::arg("frontier_span_s") = 60.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
-            py::arg("threads") = 0,
+            py::arg("threads") = 0, py::arg("cache") = true, py::arg("cache_dir") = py::none(),
             "Train train_number (1-based) of the 2.1 reference plan leaves station delay_s "
             "seconds late, as `ecorail delay --reference`: back on time at the earliest station "
             "(dwells not below min_dwell_s), then the exact least-energy split; followers (at "
-            "most this many) checked under the braking-distance cap.");
+            "most this many) checked under the braking-distance cap. cache: use the program's frontier "
+            "cache (cache_dir, or its default directory when None).");
 
   py::class_<PyMonteCarlo>(m, "MonteCarloResult",
                            "Service days under random delays: punctuality, lateness, recovery "
@@ -301,11 +324,13 @@ void bind_delay(py::module_& m) {
         py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0,
         py::arg("separation_s") = -1.0, py::arg("knot_step_s") = 1.0, py::arg("step_s") = 0.1,
         py::arg("frontier_span_s") = 60.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
-        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("threads") = 0, py::arg("cache") = true, py::arg("cache_dir") = py::none(),
+        py::arg("progress") = py::none(),
         "Whole service days of the 2.1 reference plan under random delays, as `ecorail "
         "montecarlo --reference`: days from seed (counter-based draws; the same bytes for any "
         "threads), recovery 'exact', 'exact-punctual' or 'rule', delay tail e.g. "
-        "'exponential:30'; times in s.");
+        "'exponential:30'; times in s. cache: the program's frontier and section-run cache "
+        "(cache_dir, or its default directory when None), shared with `ecorail montecarlo`.");
 }
 
 }  // namespace ecorail::python
