@@ -63,9 +63,8 @@ struct FleetSetup {
   std::unique_ptr<timetable::FleetModels> models;
 };
 
-FleetSetup setup(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
-  FleetSetup s;
-  timetable::FleetProblem& p = s.problem;
+timetable::FleetProblem fleet_problem(const FleetArgs& a) {
+  timetable::FleetProblem p;
   p.trains = a.trains;
   p.span_s = a.span_s;
   p.headway_min_s = whole(a.headway_s.first, "headway_s");
@@ -86,6 +85,13 @@ FleetSetup setup(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
   if (!(a.dwell_s >= p.dwell_min_s && a.dwell_s <= p.dwell_max_s)) {
     bad_argument("dwell_s", "a dwell within dwell_range_s", std::to_string(a.dwell_s));
   }
+  return p;
+}
+
+// The line's sections, the energy model and the pattern every train drives: built once, then
+// any number of fleet problems and timetables on it (ecorail.timetable.Fleet).
+FleetSetup setup_line(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
+  FleetSetup s;
   const auto model = timetable::model_from_name(a.model);
   if (!model) bad_argument("model", "'power-flow', 'overlap', 'sections' or 'network'", "'" + a.model + "'");
   s.model.model = *model;
@@ -114,6 +120,8 @@ FleetSetup setup(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
   }
   s.model.traction_efficiency = train.train.traction_efficiency;
   require_valid(s.model);
+  if (!(a.trip_time_s > 0.0)) bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
+  if (!(a.dwell_s >= 0.0)) bad_argument("dwell_s", "a dwell in s >= 0", std::to_string(a.dwell_s));
   s.stops = data::stops_between(line.line, line.line.stations.front().name,
                                 line.line.stations.back().name);
   dp::SectionLibraryOptions lib_options;
@@ -125,9 +133,21 @@ FleetSetup setup(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
   dp::JourneyOptions journey;
   journey.engine = lib_options.engine;
   journey.measure_marginals = false;
-  s.pattern = timetable::optimal_split_pattern(*s.library, dwells, p.trip_time_s, journey);
-  s.models = std::make_unique<timetable::FleetModels>(s.pattern.trip, s.problem, s.model);
+  try {
+    s.pattern = timetable::optimal_split_pattern(*s.library, dwells, a.trip_time_s, journey);
+  } catch (const dp::InfeasibleTimeError& e) {
+    bad_argument("trip_time_s",
+                 "a trip time that leaves at least the flat-out running time of " +
+                     std::to_string(e.minimum_s()) + " s after the dwells",
+                 std::to_string(a.trip_time_s));
+  }
   return s;
+}
+
+// The fleet problem of a and the models on it.
+void set_problem(FleetSetup& s, const FleetArgs& a) {
+  s.problem = fleet_problem(a);
+  s.models = std::make_unique<timetable::FleetModels>(s.pattern.trip, s.problem, s.model);
 }
 
 // The report as the program writes it (without the separation check) and the power per bin.
@@ -175,12 +195,40 @@ std::vector<int> given_departures(const FleetSetup& s, const py::object& departu
   return t;
 }
 
-PyFleet evaluate_py(const PyLine& line, const PyTrain& train, const py::object& departures_s,
-                    const py::object& headways_s, const FleetArgs& a) {
-  FleetSetup s;
+// ecorail.timetable.Fleet: the line's sections and the pattern, built once for many timetables.
+struct PyFleetLine {
+  FleetArgs args;
+  std::shared_ptr<FleetSetup> setup;
+};
+
+PyFleetLine make_fleet(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
+  PyFleetLine f{a, std::make_shared<FleetSetup>()};
+  py::gil_scoped_release release;  // builds the line's sections and solves the pattern
+  *f.setup = setup_line(line, train, a);
+  return f;
+}
+
+// The fleet's arguments with the problem's own (trains, span, headways, peaks).
+FleetArgs with_problem(const PyFleetLine& f, int trains, int span_s, Range headway_s,
+                       Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
+                       Range offpeak_headway_s) {
+  FleetArgs a = f.args;
+  a.trains = trains;
+  a.span_s = span_s;
+  a.headway_s = headway_s;
+  a.dwell_range_s = dwell_range_s;
+  a.peaks = std::move(peaks);
+  a.peak_headway_s = peak_headway_s;
+  a.offpeak_headway_s = offpeak_headway_s;
+  return a;
+}
+
+PyFleet evaluate_py(const PyFleetLine& f, const FleetArgs& a, const py::object& departures_s,
+                    const py::object& headways_s) {
+  FleetSetup& s = *f.setup;
   {
-    py::gil_scoped_release release;  // builds the line's sections and solves the pattern
-    s = setup(line, train, a);
+    py::gil_scoped_release release;
+    set_problem(s, a);
   }
   const std::vector<int> departures = given_departures(s, departures_s, headways_s);
   PyFleet out;
@@ -195,13 +243,13 @@ PyFleet evaluate_py(const PyLine& line, const PyTrain& train, const py::object& 
   return out;
 }
 
-PyFleet optimise_py(const PyLine& line, const PyTrain& train, const FleetArgs& a,
-                    std::uint64_t seed, double time_limit_s, int restarts, long moves,
-                    double anneal_step_s, const py::object& progress) {
-  FleetSetup s;
+PyFleet optimise_py(const PyFleetLine& f, const FleetArgs& a, std::uint64_t seed,
+                    double time_limit_s, int restarts, long moves, double anneal_step_s,
+                    const py::object& progress) {
+  FleetSetup& s = *f.setup;
   {
-    py::gil_scoped_release release;  // builds the line's sections and solves the pattern
-    s = setup(line, train, a);
+    py::gil_scoped_release release;
+    set_problem(s, a);
   }
   timetable::HeadwayOptimiserOptions o;
   o.seed = seed;
@@ -344,6 +392,61 @@ void bind_timetable(py::module_& m) {
                              [](const PyFleet& f) { return to_numpy(f.used_W); },
                              "Regenerated power used by other trains per bin, W.");
 
+  py::class_<PyFleetLine>(tt, "Fleet",
+                          "The line's sections, an energy model and the pattern every train "
+                          "drives (the optimal split of trip_time_s with dwell_s at every stop), "
+                          "built once: evaluate and optimise then cost only the timetable.")
+      .def(py::init([](const PyLine& line, const PyTrain& train, const std::string& model,
+                       const std::string& overlap, double step_s,
+                       std::vector<double> sections_at_m, py::object power_supply,
+                       double trip_time_s, double dwell_s, double ds_m, double dv_kmh,
+                       int threads) {
+             FleetArgs a;
+             add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m),
+                            std::move(power_supply), 100, 63900, {120, 660}, trip_time_s, dwell_s,
+                            {30, 45}, {}, {120, 150}, {300, 660}, ds_m, dv_kmh, threads);
+             return make_fleet(line, train, a);
+           }),
+           py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
+           py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
+           py::arg("sections_at_m") = std::vector<double>{}, py::arg("power_supply") = py::none(),
+           py::arg("trip_time_s") = 2086.0, py::arg("dwell_s") = 30.0, py::arg("ds_m") = 5.0,
+           py::arg("dv_kmh") = 0.2, py::arg("threads") = 0)
+      .def(
+          "evaluate",
+          [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
+             int trains, int span_s, Range headway_s, Range dwell_range_s,
+             std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s) {
+            return evaluate_py(f,
+                               with_problem(f, trains, span_s, headway_s, dwell_range_s,
+                                            std::move(peaks), peak_headway_s, offpeak_headway_s),
+                               departures_s, headways_s);
+          },
+          py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
+          py::arg("trains") = 100, py::arg("span_s") = 63900,
+          py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
+          py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
+          py::arg("offpeak_headway_s") = Range{300, 660},
+          "ecorail.timetable.evaluate on this fleet's sections and pattern.")
+      .def(
+          "optimise",
+          [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
+             std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
+             std::uint64_t seed, double time_limit_s, int restarts, long moves,
+             double anneal_step_s, const py::object& progress) {
+            return optimise_py(f,
+                               with_problem(f, trains, span_s, headway_s, dwell_range_s,
+                                            std::move(peaks), peak_headway_s, offpeak_headway_s),
+                               seed, time_limit_s, restarts, moves, anneal_step_s, progress);
+          },
+          py::kw_only(), py::arg("trains") = 100, py::arg("span_s") = 63900,
+          py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
+          py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
+          py::arg("offpeak_headway_s") = Range{300, 660}, py::arg("seed") = 1,
+          py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("moves") = 2000000L,
+          py::arg("anneal_step_s") = 1.0, py::arg("progress") = py::none(),
+          "ecorail.timetable.optimise on this fleet's sections and pattern.");
+
   tt.def(
       "evaluate",
       [](const PyLine& line, const PyTrain& train, const py::object& departures_s,
@@ -356,7 +459,7 @@ void bind_timetable(py::module_& m) {
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return evaluate_py(line, train, departures_s, headways_s, a);
+        return evaluate_py(make_fleet(line, train, a), a, departures_s, headways_s);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("departures_s") = py::none(),
       py::arg("headways_s") = py::none(), py::arg("model") = "power-flow",
@@ -385,8 +488,8 @@ void bind_timetable(py::module_& m) {
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return optimise_py(line, train, a, seed, time_limit_s, restarts, moves, anneal_step_s,
-                           progress);
+        return optimise_py(make_fleet(line, train, a), a, seed, time_limit_s, restarts, moves,
+                           anneal_step_s, progress);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
       py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
