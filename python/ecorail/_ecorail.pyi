@@ -2,7 +2,7 @@
 
 import enum
 import os
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -186,3 +186,125 @@ def calibrate(logs: Sequence[PathLike], *, train: Optional[Train] = None, method
               gradient_scale: str = "auto", loss: str = "cauchy", loss_scale: float = 2.5,
               segment_rows: int = 10, max_iterations: int = 100, threads: int = 1,
               accel_limits: bool = True, progress: Progress = None) -> Calibration: ...
+
+class MonteCarloResult:
+    summary: Summary
+    def to_dict(self) -> Dict[str, Any]: ...
+    @property
+    def days(self) -> int: ...
+    @property
+    def punctuality(self) -> Dict[str, float]: ...
+    @property
+    def mean_lateness_s(self) -> Dict[str, float]: ...
+    @property
+    def substation_energy_kJ(self) -> Dict[str, float]: ...
+    @property
+    def traction_energy_kJ(self) -> Dict[str, float]: ...
+    @property
+    def day_traction_kJ(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def day_substation_kJ(self) -> npt.NDArray[np.float64]: ...
+
+def montecarlo(line: Line, train: Train, *, days: int = 100, seed: int = 1,
+               recovery: str = "exact", tail: str = "exponential:30", early_s: float = 10.0,
+               run_early_s: float = 0.0, min_dwell_s: float = 30.0, takeover_s: float = 120.0,
+               punctual_s: float = 10.0, separation_s: float = -1.0, knot_step_s: float = 1.0,
+               step_s: float = 0.1, frontier_span_s: float = 60.0, ds_m: float = 5.0,
+               dv_kmh: float = 0.2, threads: int = 0, cache: bool = True,
+               cache_dir: Optional[PathLike] = None,
+               progress: Progress = None) -> MonteCarloResult: ...
+
+Range = Tuple[float, float]
+
+class timetable:  # submodule ecorail.timetable
+    class FleetResult:
+        summary: Summary
+        def to_dict(self) -> Dict[str, Any]: ...
+        @property
+        def departures_s(self) -> npt.NDArray[np.int32]: ...
+        @property
+        def headways_s(self) -> npt.NDArray[np.int32]: ...
+        @property
+        def substation_energy_kJ(self) -> float: ...
+        @property
+        def traction_energy_kJ(self) -> float: ...
+        @property
+        def regen_energy_kJ(self) -> float: ...
+        @property
+        def used_regen_kJ(self) -> float: ...
+        @property
+        def per_train_substation_kJ(self) -> npt.NDArray[np.float64]: ...
+        @property
+        def power_time_s(self) -> npt.NDArray[np.float64]: ...
+        @property
+        def traction_power_W(self) -> npt.NDArray[np.float64]: ...
+        @property
+        def regen_power_W(self) -> npt.NDArray[np.float64]: ...
+        @property
+        def used_regen_power_W(self) -> npt.NDArray[np.float64]: ...
+
+    class Fleet:
+        def __init__(self, line: Line, train: Train, *, model: str = "power-flow",
+                     overlap: str = "ahead", step_s: float = ...,
+                     sections_at_m: Sequence[float] = (), power_supply: Optional[PathLike] = None,
+                     trip_time_s: float = 2086.0, dwell_s: float = 30.0, ds_m: float = 5.0,
+                     dv_kmh: float = 0.2, threads: int = 0) -> None: ...
+        def evaluate(self, *, departures_s: Optional[Sequence[int]] = None,
+                     headways_s: Optional[Sequence[int]] = None, trains: int = 100,
+                     span_s: int = 63900, headway_s: Range = (120, 660),
+                     dwell_range_s: Range = (30, 45), peaks: Sequence[Range] = (),
+                     peak_headway_s: Range = (120, 150),
+                     offpeak_headway_s: Range = (300, 660)) -> "timetable.FleetResult": ...
+        def optimise(self, *, trains: int = 100, span_s: int = 63900,
+                     headway_s: Range = (120, 660), dwell_range_s: Range = (30, 45),
+                     peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
+                     offpeak_headway_s: Range = (300, 660), seed: int = 1,
+                     time_limit_s: float = 0.0, restarts: int = 2, moves: int = 2000000,
+                     anneal_step_s: float = 1.0,
+                     progress: Progress = None) -> "timetable.FleetResult": ...
+
+    @staticmethod
+    def evaluate(line: Line, train: Train, *, departures_s: Optional[Sequence[int]] = None,
+                 headways_s: Optional[Sequence[int]] = None, model: str = "power-flow",
+                 overlap: str = "ahead", step_s: float = ..., sections_at_m: Sequence[float] = (),
+                 power_supply: Optional[PathLike] = None, trains: int = 100, span_s: int = 63900,
+                 headway_s: Range = (120, 660), trip_time_s: float = 2086.0,
+                 dwell_s: float = 30.0, dwell_range_s: Range = (30, 45),
+                 peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
+                 offpeak_headway_s: Range = (300, 660), ds_m: float = 5.0, dv_kmh: float = 0.2,
+                 threads: int = 0) -> "timetable.FleetResult": ...
+    @staticmethod
+    def optimise(line: Line, train: Train, *, model: str = "power-flow", overlap: str = "ahead",
+                 step_s: float = ..., sections_at_m: Sequence[float] = (),
+                 power_supply: Optional[PathLike] = None, trains: int = 100, span_s: int = 63900,
+                 headway_s: Range = (120, 660), trip_time_s: float = 2086.0,
+                 dwell_s: float = 30.0, dwell_range_s: Range = (30, 45),
+                 peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
+                 offpeak_headway_s: Range = (300, 660), seed: int = 1, time_limit_s: float = 0.0,
+                 restarts: int = 2, moves: int = 2000000, anneal_step_s: float = 1.0,
+                 ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
+                 progress: Progress = None) -> "timetable.FleetResult": ...
+
+class delay:  # submodule ecorail.delay
+    class Recovery:
+        summary: Summary
+        @property
+        def recovered(self) -> bool: ...
+        @property
+        def back_on_time_at(self) -> str: ...
+        @property
+        def final_lateness_s(self) -> float: ...
+        @property
+        def recovery_energy_kJ(self) -> float: ...
+        @property
+        def rule_energy_kJ(self) -> float: ...
+        @property
+        def plan_energy_kJ(self) -> float: ...
+        @property
+        def sections(self) -> List[Dict[str, Any]]: ...
+
+    @staticmethod
+    def recover(line: Line, train: Train, *, train_number: int, station: str, delay_s: float,
+                min_dwell_s: float = 30.0, followers: int = 5, frontier_span_s: float = 60.0,
+                ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0, cache: bool = True,
+                cache_dir: Optional[PathLike] = None) -> "delay.Recovery": ...

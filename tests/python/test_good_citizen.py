@@ -145,3 +145,27 @@ def test_help_and_docstrings_name_units():
     assert "kJ" in ecorail.Run.traction_energy_kJ.__doc__
     assert "m/s" in ecorail.Run.speed_ms.__doc__
     assert ecorail.__doc__ and "docs/python.md" in ecorail.__doc__
+
+
+def test_type_stubs_name_every_public_name():
+    """The .pyi stubs editors read name every public class and function of the module, and the
+    members of its classes."""
+    import ast
+    import inspect
+    import os
+
+    stub = os.path.join(os.path.dirname(ecorail.__file__), "_ecorail.pyi")
+    tree = ast.parse(open(stub).read())
+    top = {n.name for n in tree.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
+    public = {n for n in dir(ecorail._ecorail) if not n.startswith("_")}
+    assert public <= top, public - top
+    classes = {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
+    for name in public:
+        obj = getattr(ecorail._ecorail, name)
+        if inspect.isclass(obj) and name in classes and not issubclass(obj, BaseException):
+            stubbed = {m.name for m in classes[name].body if isinstance(m, ast.FunctionDef)}
+            stubbed |= {m.target.id for m in classes[name].body if isinstance(m, ast.AnnAssign)}
+            members = {m for m in vars(obj) if not m.startswith("_")}
+            if issubclass(obj, __import__("enum").Enum) or hasattr(obj, "__members__"):
+                continue
+            assert members <= stubbed, (name, members - stubbed)
