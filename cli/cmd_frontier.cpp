@@ -171,14 +171,14 @@ void run_frontier(const FrontierArgs& a) {
   // All outputs or none: temporaries renamed together once every one was written.
   data::OutputBatch batch;
   if (!a.json.empty()) {
-    const nlohmann::json doc = output::frontier_report_json(
-        frontiers, a.all, a.problem.ds_m, a.problem.dv_kmh,
-        run_provenance(p, a.problem,
-                       {{"tmin_s", a.t_min},
-                        {"tmax_s", a.t_max},
-                        {"step_s", a.step},
-                        {"all", a.all},
-                        {"cache", !a.no_cache}}));
+    const nlohmann::json doc =
+        output::frontier_report_json(frontiers, a.all, a.problem.ds_m, a.problem.dv_kmh,
+                                     run_provenance(p, a.problem,
+                                                    {{"tmin_s", a.t_min},
+                                                     {"tmax_s", a.t_max},
+                                                     {"step_s", a.step},
+                                                     {"all", a.all},
+                                                     {"cache", !a.no_cache}}));
     batch.add(a.json, [&](std::ostream& o) { output::write_json(o, doc); });
   }
   if (!a.csv.empty())

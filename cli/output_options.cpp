@@ -10,8 +10,8 @@
 #include "output/gnuplot.hpp"
 #include "output/gtfs_writer.hpp"
 #include "output/provenance.hpp"
-#include "output/solve_reports.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "output/speed_plot.hpp"
 
 namespace ecorail::cli {

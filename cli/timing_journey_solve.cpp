@@ -90,9 +90,9 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
   }
 
   const output::Timeline timeline = output::journey_timeline(sol.journey, sol.routes);
-  const nlohmann::json report = output::timing_journey_report_json(
-      sol, journey.id, problem.ds_m, problem.dv_kmh,
-      run_provenance(p, problem, {{"journey", journey_path}}));
+  const nlohmann::json report =
+      output::timing_journey_report_json(sol, journey.id, problem.ds_m, problem.dv_kmh,
+                                         run_provenance(p, problem, {{"journey", journey_path}}));
   char title[256];
   std::snprintf(title, sizeof title, "%s: %.2f s running, traction %.0f kJ", journey.id.c_str(),
                 sol.journey.running_time_s, s.traction_energy_kJ);

@@ -80,9 +80,8 @@ std::string speed_cap_note(const data::Line& line, const std::vector<std::string
       highest_kmh, vmax_kmh);
 }
 
-nlohmann::json section_report_json(const dp::SectionSolution& solution,
-                                   const physics::Train& train, const std::string& cap_note,
-                                   const nlohmann::json& provenance) {
+nlohmann::json section_report_json(const dp::SectionSolution& solution, const physics::Train& train,
+                                   const std::string& cap_note, const nlohmann::json& provenance) {
   nlohmann::json report = section_solution_json(solution);
   report["notes"] = notes_json(cap_note);
   report["auxiliary_energy_kJ"] = auxiliary_energy_kJ(train, solution.summary.running_time_s);
@@ -117,8 +116,8 @@ std::vector<std::string> timing_journey_stops(const dp::TimingJourneySolution& s
 }
 
 nlohmann::json timing_journey_report_json(const dp::TimingJourneySolution& sol,
-                                          const std::string& journey_id, double ds_m,
-                                          double dv_kmh, const nlohmann::json& provenance) {
+                                          const std::string& journey_id, double ds_m, double dv_kmh,
+                                          const nlohmann::json& provenance) {
   const JourneyLabels labels{timing_journey_stops(sol), "timing points", ds_m, dv_kmh, 0};
   nlohmann::json report = journey_json(sol.journey, labels);
   report["journey"] = journey_id;
@@ -145,8 +144,7 @@ nlohmann::json timing_journey_report_json(const dp::TimingJourneySolution& sol,
 
 nlohmann::json min_time_report_json(const physics::Route& route,
                                     const physics::SimulationResult& sim,
-                                    const physics::Train& train,
-                                    const nlohmann::json& provenance) {
+                                    const physics::Train& train, const nlohmann::json& provenance) {
   nlohmann::json j = run_json(sim);
   j["from"] = route.from_name();
   j["to"] = route.to_name();

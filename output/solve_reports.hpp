@@ -47,21 +47,19 @@ std::string speed_cap_note(const data::Line& line, const std::vector<std::string
                            const physics::Train& train);
 
 // `solve` of one section: section_solution_json plus notes, auxiliary energy and provenance.
-nlohmann::json section_report_json(const dp::SectionSolution& solution,
-                                   const physics::Train& train, const std::string& cap_note,
-                                   const nlohmann::json& provenance);
+nlohmann::json section_report_json(const dp::SectionSolution& solution, const physics::Train& train,
+                                   const std::string& cap_note, const nlohmann::json& provenance);
 // `solve` of a journey: journey_json plus provenance, notes, auxiliary energy over the trip
 // time and, with a minimum regime, what merging cost.
-nlohmann::json journey_report_json(const dp::JourneySolution& solution,
-                                   const JourneyLabels& labels, const physics::Train& train,
-                                   const std::string& cap_note,
+nlohmann::json journey_report_json(const dp::JourneySolution& solution, const JourneyLabels& labels,
+                                   const physics::Train& train, const std::string& cap_note,
                                    const dp::MinRegimeOptions& min_regime,
                                    const nlohmann::json& provenance);
 // `solve --journey`: the journey keys plus windows_met, windows, trip_time_s, departure_s and
 // parts (docs/ttobench.md).
 nlohmann::json timing_journey_report_json(const dp::TimingJourneySolution& solution,
-                                          const std::string& journey_id, double ds_m,
-                                          double dv_kmh, const nlohmann::json& provenance);
+                                          const std::string& journey_id, double ds_m, double dv_kmh,
+                                          const nlohmann::json& provenance);
 // The stop labels of a timing journey's parts ("123.4 m"), as its report names them.
 std::vector<std::string> timing_journey_stops(const dp::TimingJourneySolution& solution);
 // `min-time`: the flat-out run with its ends, distance and minimum running time.

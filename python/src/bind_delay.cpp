@@ -11,14 +11,14 @@
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "dp/section_library.hpp"
+#include "output/frontier_cache.hpp"
+#include "output/section_run_cache.hpp"
 #include "python/src/common.hpp"
 #include "recovery/delay_recovery.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery/monte_carlo_stats.hpp"
 #include "recovery/plan.hpp"
 #include "recovery/section_runs.hpp"
-#include "output/frontier_cache.hpp"
-#include "output/section_run_cache.hpp"
 
 namespace ecorail::python {
 
@@ -78,25 +78,28 @@ struct PyRecovery {
 };
 
 PyRecovery recover_py(const PyLine& line, const PyTrain& train, int train_number,
-                      const std::string& station, double delay_s, double min_dwell_s,
-                      int followers, double frontier_span_s, double ds_m, double dv_kmh,
-                      int threads, bool cache, const py::object& cache_dir) {
+                      const std::string& station, double delay_s, double min_dwell_s, int followers,
+                      double frontier_span_s, double ds_m, double dv_kmh, int threads, bool cache,
+                      const py::object& cache_dir) {
   if (!std::isfinite(delay_s) || delay_s < 0.0 || delay_s > 86400.0) {
     bad_argument("delay_s", "a delay in seconds, 0 <= D <= 86400", std::to_string(delay_s));
   }
-  if (train_number < 1) bad_argument("train_number", "a train number >= 1", std::to_string(train_number));
-  if (followers < 0 || followers > 1000) bad_argument("followers", "0 to 1000 followers", std::to_string(followers));
+  if (train_number < 1)
+    bad_argument("train_number", "a train number >= 1", std::to_string(train_number));
+  if (followers < 0 || followers > 1000)
+    bad_argument("followers", "0 to 1000 followers", std::to_string(followers));
   recovery::DelayRecoveryOptions options;
   options.min_dwell_s = min_dwell_s;
   options.max_followers = followers;
   options.check_followers = followers > 0;
   require_valid(options);
-  ReferencePlan r = reference_plan(line, train, {ds_m, dv_kmh, "traction", "hold", threads},
-                                   frontier_span_s);
+  ReferencePlan r =
+      reference_plan(line, train, {ds_m, dv_kmh, "traction", "hold", threads}, frontier_span_s);
   const auto it = std::find(r.stops.begin(), r.stops.end(), station);
   if (it == r.stops.end() || it + 1 == r.stops.end()) {
-    bad_argument("station", "a station the train departs from (" + r.stops.front() + " .. " +
-                                r.stops[r.stops.size() - 2] + ")",
+    bad_argument("station",
+                 "a station the train departs from (" + r.stops.front() + " .. " +
+                     r.stops[r.stops.size() - 2] + ")",
                  "'" + station + "'");
   }
   if (static_cast<std::size_t>(train_number) > r.plan.trains.size()) {
@@ -130,10 +133,11 @@ PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, int days, s
                            const std::string& recovery_name, const std::string& tail,
                            double early_s, double run_early_s, double min_dwell_s,
                            double takeover_s, double punctual_s, double separation_s,
-                           double knot_step_s, double step_s, double frontier_span_s,
-                           double ds_m, double dv_kmh, int threads, bool cache,
-                           const py::object& cache_dir, const py::object& progress) {
-  if (days < 1 || days > 100000000) bad_argument("days", "a number of days from 1 to 1e8", std::to_string(days));
+                           double knot_step_s, double step_s, double frontier_span_s, double ds_m,
+                           double dv_kmh, int threads, bool cache, const py::object& cache_dir,
+                           const py::object& progress) {
+  if (days < 1 || days > 100000000)
+    bad_argument("days", "a number of days from 1 to 1e8", std::to_string(days));
   if (seed < 0) bad_argument("seed", "a seed >= 0", std::to_string(seed));
   recovery::MonteCarloOptions o;
   if (recovery_name == "exact") {
@@ -246,13 +250,15 @@ void bind_delay(py::module_& m) {
                          "the least traction energy (kJ) over the recovery sections, beside the "
                          "seed paper's rule.")
       .def_readonly("summary", &PyRecovery::summary)
-      .def_property_readonly("recovered", [](const PyRecovery& r) { return r.result.summary.recovered; })
+      .def_property_readonly("recovered",
+                             [](const PyRecovery& r) { return r.result.summary.recovered; })
       .def_property_readonly("back_on_time_at",
                              [](const PyRecovery& r) { return r.result.summary.back_on_time_at; })
       .def_property_readonly("final_lateness_s",
                              [](const PyRecovery& r) { return r.result.summary.final_lateness_s; })
-      .def_property_readonly("recovery_energy_kJ",
-                             [](const PyRecovery& r) { return r.result.summary.recovery_energy_kJ; })
+      .def_property_readonly(
+          "recovery_energy_kJ",
+          [](const PyRecovery& r) { return r.result.summary.recovery_energy_kJ; })
       .def_property_readonly("rule_energy_kJ",
                              [](const PyRecovery& r) { return r.result.summary.rule_energy_kJ; })
       .def_property_readonly("plan_energy_kJ",
@@ -280,48 +286,50 @@ void bind_delay(py::module_& m) {
             return list;
           },
           "One dict per recovery section: times in s, energies in kJ.");
-  delay.def("recover", &recover_py, py::arg("line"), py::arg("train"), py::kw_only(),
-            py::arg("train_number"), py::arg("station"), py::arg("delay_s"),
-            py::arg("min_dwell_s") = 30.0, py::arg("followers") = 5,
-            py::arg("frontier_span_s") = 60.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
-            py::arg("threads") = 0, py::arg("cache") = true, py::arg("cache_dir") = py::none(),
-            "Train train_number (1-based) of the 2.1 reference plan leaves station delay_s "
-            "seconds late, as `ecorail delay --reference`: back on time at the earliest station "
-            "(dwells not below min_dwell_s), then the exact least-energy split; followers (at "
-            "most this many) checked under the braking-distance cap. cache: use the program's frontier "
-            "cache (cache_dir, or its default directory when None).");
+  delay.def(
+      "recover", &recover_py, py::arg("line"), py::arg("train"), py::kw_only(),
+      py::arg("train_number"), py::arg("station"), py::arg("delay_s"),
+      py::arg("min_dwell_s") = 30.0, py::arg("followers") = 5, py::arg("frontier_span_s") = 60.0,
+      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
+      py::arg("cache") = true, py::arg("cache_dir") = py::none(),
+      "Train train_number (1-based) of the 2.1 reference plan leaves station delay_s "
+      "seconds late, as `ecorail delay --reference`: back on time at the earliest station "
+      "(dwells not below min_dwell_s), then the exact least-energy split; followers (at "
+      "most this many) checked under the braking-distance cap. cache: use the program's frontier "
+      "cache (cache_dir, or its default directory when None).");
 
   py::class_<PyMonteCarlo>(m, "MonteCarloResult",
                            "Service days under random delays: punctuality, lateness, recovery "
                            "time, traction and substation energy (kJ) with 95 % confidence "
                            "intervals.")
       .def_readonly("summary", &PyMonteCarlo::summary)
-      .def("to_dict", [](const PyMonteCarlo& r) { return to_python(r.report); },
-           "The document `ecorail montecarlo --reference --json` writes.")
+      .def(
+          "to_dict", [](const PyMonteCarlo& r) { return to_python(r.report); },
+          "The document `ecorail montecarlo --reference --json` writes.")
       .def_property_readonly("days", [](const PyMonteCarlo& r) { return r.statistics.days; })
-      .def_property_readonly("punctuality",
-                             [](const PyMonteCarlo& r) { return estimate_dict(r.statistics.punctuality); },
-                             "Share of punctual arrivals per day: mean and 95 % interval.")
-      .def_property_readonly("mean_lateness_s", [](const PyMonteCarlo& r) {
-        return estimate_dict(r.statistics.mean_lateness_s);
-      })
-      .def_property_readonly("substation_energy_kJ", [](const PyMonteCarlo& r) {
-        return estimate_dict(r.statistics.substation_kJ);
-      })
-      .def_property_readonly("traction_energy_kJ", [](const PyMonteCarlo& r) {
-        return estimate_dict(r.statistics.traction_kJ);
-      })
-      .def_property_readonly("day_traction_kJ",
-                             [](const PyMonteCarlo& r) { return to_numpy(r.traction_kJ); },
-                             "Traction energy of each day, kJ (float64).")
-      .def_property_readonly("day_substation_kJ",
-                             [](const PyMonteCarlo& r) { return to_numpy(r.substation_kJ); },
-                             "Substation energy of each day, kJ (float64).");
+      .def_property_readonly(
+          "punctuality",
+          [](const PyMonteCarlo& r) { return estimate_dict(r.statistics.punctuality); },
+          "Share of punctual arrivals per day: mean and 95 % interval.")
+      .def_property_readonly(
+          "mean_lateness_s",
+          [](const PyMonteCarlo& r) { return estimate_dict(r.statistics.mean_lateness_s); })
+      .def_property_readonly(
+          "substation_energy_kJ",
+          [](const PyMonteCarlo& r) { return estimate_dict(r.statistics.substation_kJ); })
+      .def_property_readonly(
+          "traction_energy_kJ",
+          [](const PyMonteCarlo& r) { return estimate_dict(r.statistics.traction_kJ); })
+      .def_property_readonly(
+          "day_traction_kJ", [](const PyMonteCarlo& r) { return to_numpy(r.traction_kJ); },
+          "Traction energy of each day, kJ (float64).")
+      .def_property_readonly(
+          "day_substation_kJ", [](const PyMonteCarlo& r) { return to_numpy(r.substation_kJ); },
+          "Substation energy of each day, kJ (float64).");
   m.def("montecarlo", &montecarlo_py, py::arg("line"), py::arg("train"), py::kw_only(),
         py::arg("days") = 100, py::arg("seed") = 1, py::arg("recovery") = "exact",
-        py::arg("tail") = "exponential:30", py::arg("early_s") = 10.0,
-        py::arg("run_early_s") = 0.0, py::arg("min_dwell_s") = 30.0,
-        py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0,
+        py::arg("tail") = "exponential:30", py::arg("early_s") = 10.0, py::arg("run_early_s") = 0.0,
+        py::arg("min_dwell_s") = 30.0, py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0,
         py::arg("separation_s") = -1.0, py::arg("knot_step_s") = 1.0, py::arg("step_s") = 0.1,
         py::arg("frontier_span_s") = 60.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
         py::arg("threads") = 0, py::arg("cache") = true, py::arg("cache_dir") = py::none(),

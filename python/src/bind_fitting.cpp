@@ -41,10 +41,11 @@ PyEnvelopeFit fit_envelope_py(const py::object& points_path, const std::string& 
   if (form_name != "best" && form_name != "piecewise" && form_name != "power") {
     bad_argument("form", "'best', 'piecewise' or 'power'", "'" + form_name + "'");
   }
-  if (degree < 0) bad_argument("degree", "0 (default) or a polynomial degree >= 1", std::to_string(degree));
+  if (degree < 0)
+    bad_argument("degree", "0 (default) or a polynomial degree >= 1", std::to_string(degree));
   const EnvelopeKind kind = kind_name == "braking" ? EnvelopeKind::Braking : EnvelopeKind::Traction;
-  const PyTrain base = train.is_none() ? PyTrain{data::default_train(), "embedded"}
-                                       : py::cast<PyTrain>(train);
+  const PyTrain base =
+      train.is_none() ? PyTrain{data::default_train(), "embedded"} : py::cast<PyTrain>(train);
   const std::string path = fspath(points_path);
   const std::vector<EnvelopePoint> points = read_envelope_points(path);
   EnvelopeFitOptions options;
@@ -89,7 +90,8 @@ PyCalibration calibrate_py(const std::vector<py::object>& log_paths, const py::o
     bad_argument("loss", "'cauchy', 'huber' or 'none'", "'" + loss + "'");
   }
   o.loss = loss == "huber" ? LossKind::Huber : loss == "none" ? LossKind::None : LossKind::Cauchy;
-  if (!(loss_scale > 0.0)) bad_argument("loss_scale", "a loss scale above 0 (sigmas)", std::to_string(loss_scale));
+  if (!(loss_scale > 0.0))
+    bad_argument("loss_scale", "a loss scale above 0 (sigmas)", std::to_string(loss_scale));
   o.loss_scale = loss_scale;
   for (const auto& name : fix) {
     const auto p = param_from_name(name);
@@ -108,17 +110,20 @@ PyCalibration calibrate_py(const std::vector<py::object>& log_paths, const py::o
   o.gradient_scale = gradient_scale == "fit"     ? GradientScaleMode::Fit
                      : gradient_scale == "fixed" ? GradientScaleMode::Fixed
                                                  : GradientScaleMode::Auto;
-  if (segment_rows < 1) bad_argument("segment_rows", "at least 1 row per segment", std::to_string(segment_rows));
+  if (segment_rows < 1)
+    bad_argument("segment_rows", "at least 1 row per segment", std::to_string(segment_rows));
   o.output_error.segment_rows = segment_rows;
-  if (max_iterations < 1) bad_argument("max_iterations", "at least 1 iteration", std::to_string(max_iterations));
+  if (max_iterations < 1)
+    bad_argument("max_iterations", "at least 1 iteration", std::to_string(max_iterations));
   o.max_iterations = max_iterations;
   if (threads < 0 || threads > dp::kMaxThreads) {
-    bad_argument("threads", "1 to " + std::to_string(dp::kMaxThreads) + " threads", std::to_string(threads));
+    bad_argument("threads", "1 to " + std::to_string(dp::kMaxThreads) + " threads",
+                 std::to_string(threads));
   }
   o.num_threads = std::max(1, threads);
   o.apply_accel_limits = accel_limits;
-  const PyTrain base = train.is_none() ? PyTrain{data::default_train(), "embedded"}
-                                       : py::cast<PyTrain>(train);
+  const PyTrain base =
+      train.is_none() ? PyTrain{data::default_train(), "embedded"} : py::cast<PyTrain>(train);
   std::vector<Log> logs;
   for (const auto& path : log_paths) logs.push_back(read_log(fspath(path)));
   Interruptible guard(progress);
@@ -148,8 +153,9 @@ void bind_fitting(py::module_& m) {
   py::class_<PyEnvelopeFit>(m, "EnvelopeFit",
                             "A fitted traction or braking envelope (piecewise and constant-power "
                             "forms, standard errors, AIC/BIC).")
-      .def("to_dict", [](const PyEnvelopeFit& f) { return to_python(f.report); },
-           "The document `ecorail fit-envelope --json` writes.")
+      .def(
+          "to_dict", [](const PyEnvelopeFit& f) { return to_python(f.report); },
+          "The document `ecorail fit-envelope --json` writes.")
       .def_readonly("report", &PyEnvelopeFit::report_text, "The printed report of both forms.")
       .def_readonly("form", &PyEnvelopeFit::form, "The form written into train.")
       .def_readonly("train", &PyEnvelopeFit::train,
@@ -159,8 +165,9 @@ void bind_fitting(py::module_& m) {
                             "A calibrated train model: Davis A, B, C, rotating-mass factor, "
                             "gradient scale (optionally mass, traction scale) with standard "
                             "errors.")
-      .def("to_dict", [](const PyCalibration& c) { return to_python(c.report); },
-           "The document `ecorail calibrate --json` writes.")
+      .def(
+          "to_dict", [](const PyCalibration& c) { return to_python(c.report); },
+          "The document `ecorail calibrate --json` writes.")
       .def_readonly("summary", &PyCalibration::summary)
       .def_readonly("method", &PyCalibration::method, "The estimate written into train.")
       .def_readonly("train", &PyCalibration::train,
@@ -176,9 +183,9 @@ void bind_fitting(py::module_& m) {
   m.def("calibrate", &calibrate_py, py::arg("logs"), py::kw_only(), py::arg("train") = py::none(),
         py::arg("method") = "both", py::arg("fix") = std::vector<std::string>{},
         py::arg("fit_mass") = false, py::arg("fit_traction_scale") = false,
-        py::arg("gradient_scale") = "auto", py::arg("loss") = "cauchy",
-        py::arg("loss_scale") = 2.5, py::arg("segment_rows") = 10, py::arg("max_iterations") = 100,
-        py::arg("threads") = 1, py::arg("accel_limits") = true, py::arg("progress") = py::none(),
+        py::arg("gradient_scale") = "auto", py::arg("loss") = "cauchy", py::arg("loss_scale") = 2.5,
+        py::arg("segment_rows") = 10, py::arg("max_iterations") = 100, py::arg("threads") = 1,
+        py::arg("accel_limits") = true, py::arg("progress") = py::none(),
         "Calibrates the train model from per-second logs (paths), as `ecorail calibrate`: "
         "method 'equation', 'output' or 'both'; fix holds parameters at their start; loss "
         "'cauchy', 'huber' or 'none' with loss_scale in noise standard deviations; threads for "

@@ -52,8 +52,9 @@ void bind_model(py::module_& m) {
           "or a TTOBench track JSON (docs/formats.md). Bad input raises ValueError naming file, "
           "row and field.")
       .def_property_readonly("name", [](const PyLine& l) { return l.line.name; })
-      .def_property_readonly("source", [](const PyLine& l) { return l.source; },
-                             "'embedded' or the path it was read from (as the reports name it).")
+      .def_property_readonly(
+          "source", [](const PyLine& l) { return l.source; },
+          "'embedded' or the path it was read from (as the reports name it).")
       .def_property_readonly(
           "stations",
           [](const PyLine& l) {
@@ -79,7 +80,10 @@ void bind_model(py::module_& m) {
 
   py::class_<PyTrain>(m, "Train", "A train: mass, resistance, traction and braking envelopes.")
       .def_static(
-          "reference", [] { return PyTrain{data::default_train(), "embedded"}; },
+          "reference",
+          [] {
+            return PyTrain{data::default_train(), "embedded"};
+          },
           "The reference train compiled into the library (data/contest/train.toml).")
       .def_static(
           "from_file",
@@ -97,17 +101,18 @@ void bind_model(py::module_& m) {
           py::arg("text"), py::arg("label") = "<toml>",
           "A train from TOML text (as Train.to_toml writes it); label names it in errors and "
           "reports.")
-      .def("to_toml", [](const PyTrain& t) { return data::train_to_toml(t.train); },
-           "The train as TOML text (the program's train file format).")
+      .def(
+          "to_toml", [](const PyTrain& t) { return data::train_to_toml(t.train); },
+          "The train as TOML text (the program's train file format).")
       .def_property_readonly("name", [](const PyTrain& t) { return t.train.name; })
       .def_property_readonly("source", [](const PyTrain& t) { return t.source; })
-      .def_property_readonly("mass_t", [](const PyTrain& t) { return t.train.mass_kg / 1000.0; },
-                             "Mass in t.")
+      .def_property_readonly(
+          "mass_t", [](const PyTrain& t) { return t.train.mass_kg / 1000.0; }, "Mass in t.")
       .def_property_readonly(
           "max_speed_kmh", [](const PyTrain& t) { return units::ms_to_kmh(t.train.max_speed_ms); },
           "Maximum speed in km/h.")
-      .def_property_readonly("checksum",
-                             [](const PyTrain& t) { return data::hex64(data::train_checksum(t.train)); })
+      .def_property_readonly(
+          "checksum", [](const PyTrain& t) { return data::hex64(data::train_checksum(t.train)); })
       .def("__repr__", [](const PyTrain& t) {
         return "<ecorail.Train '" + t.train.name + "' from " + t.source + ">";
       });

@@ -24,7 +24,8 @@ PyPolicy policy_table_py(const PyLine& line, const PyTrain& train, const std::st
                          const std::string& to, double time_s, const std::vector<double>& ladder_s,
                          double ds_m, double dv_kmh, const std::string& objective,
                          const std::string& cruise, int threads, const py::object& progress) {
-  if (!(time_s > 0.0)) bad_argument("time_s", "a running time in seconds > 0", std::to_string(time_s));
+  if (!(time_s > 0.0))
+    bad_argument("time_s", "a running time in seconds > 0", std::to_string(time_s));
   policy::PolicyLadderOptions ladder;
   ladder.nominal_time_s = time_s;
   if (!ladder_s.empty()) ladder.time_offsets_s = ladder_s;
@@ -50,11 +51,12 @@ void bind_policy(py::module_& m) {
                        "An optimal feedback policy of one section on the DP grid: per layer "
                        "(running time) the control, force, cost-to-go and time-to-go at every "
                        "node. to_bytes() is the binary table `ecorail policy --out` writes.")
-      .def("to_bytes",
-           [](const PyPolicy& p) { return py::bytes(policy::encode_policy(p.table)); },
-           "The binary table (docs/policy_format.md), byte for byte the program's file.")
       .def(
-          "save", [](const PyPolicy& p, const std::string& path) { policy::save_policy(p.table, path); },
+          "to_bytes", [](const PyPolicy& p) { return py::bytes(policy::encode_policy(p.table)); },
+          "The binary table (docs/policy_format.md), byte for byte the program's file.")
+      .def(
+          "save",
+          [](const PyPolicy& p, const std::string& path) { policy::save_policy(p.table, path); },
           py::arg("path"), "Writes the binary table atomically.")
       .def(
           "to_csv",
@@ -66,7 +68,8 @@ void bind_policy(py::module_& m) {
           "The table as CSV text (as `ecorail policy --csv`).")
       .def_property_readonly("from_", [](const PyPolicy& p) { return p.table.from; })
       .def_property_readonly("to", [](const PyPolicy& p) { return p.table.to; })
-      .def_property_readonly("route_length_m", [](const PyPolicy& p) { return p.table.route_length_m; })
+      .def_property_readonly("route_length_m",
+                             [](const PyPolicy& p) { return p.table.route_length_m; })
       .def_property_readonly("stage_count", [](const PyPolicy& p) { return p.table.stage_count(); })
       .def_property_readonly("node_count", [](const PyPolicy& p) { return p.table.node_count(); })
       .def_property_readonly(
@@ -102,7 +105,8 @@ void bind_policy(py::module_& m) {
               bad_argument("s_m", "a position from 0 to the section length", std::to_string(s_m));
             }
             if (!(speed_kmh >= 0.0 && speed_kmh <= units::ms_to_kmh(p.train.max_speed_ms))) {
-              bad_argument("speed_kmh", "a speed from 0 to the train's maximum", std::to_string(speed_kmh));
+              bad_argument("speed_kmh", "a speed from 0 to the train's maximum",
+                           std::to_string(speed_kmh));
             }
             const policy::Advice a = advisor.advise(k, s_m, units::kmh_to_ms(speed_kmh));
             py::dict d;
@@ -121,9 +125,9 @@ void bind_policy(py::module_& m) {
 
   m.def("policy_table", &policy_table_py, py::arg("line"), py::arg("train"), py::kw_only(),
         py::arg("from_"), py::arg("to"), py::arg("time_s"),
-        py::arg("ladder_s") = std::vector<double>{}, py::arg("ds_m") = 5.0,
-        py::arg("dv_kmh") = 0.2, py::arg("objective") = "traction", py::arg("cruise") = "hold",
-        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("ladder_s") = std::vector<double>{}, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
+        py::arg("objective") = "traction", py::arg("cruise") = "hold", py::arg("threads") = 0,
+        py::arg("progress") = py::none(),
         "The policy table of section from_ -> to for running time time_s (s), as `ecorail "
         "policy`: one layer per offset in ladder_s (s; default [0]; a late train follows a "
         "negative offset). Grid, objective, cruise and threads as in solve.");

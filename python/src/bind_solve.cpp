@@ -60,9 +60,9 @@ std::vector<std::string> run_stops(const data::Line& line, const std::string& fr
   }
   std::vector<std::string> stops;
   for (std::size_t i = 0; i < all.size(); ++i) {
-    const bool passed = i > 0 && i + 1 < all.size() &&
-                        std::find(pass_through.begin(), pass_through.end(), all[i]) !=
-                            pass_through.end();
+    const bool passed =
+        i > 0 && i + 1 < all.size() &&
+        std::find(pass_through.begin(), pass_through.end(), all[i]) != pass_through.end();
     if (!passed) stops.push_back(all[i]);
   }
   return stops;
@@ -149,8 +149,8 @@ py::object solve_section_py(const PyLine& line, const PyTrain& train, const std:
   const physics::Route route = data::build_route(line.line, from, to, train.train);
   Interruptible guard(progress);
   options.search.progress = guard.callback();
-  dp::SectionSolution solution = guard.run(
-      [&] { return dp::solve_section(train.train, route, time_s, options); });
+  dp::SectionSolution solution =
+      guard.run([&] { return dp::solve_section(train.train, route, time_s, options); });
   const auto& s = solution.summary;
   PyRun run;
   run.kind = "section";
@@ -185,32 +185,29 @@ py::object solve_journey_py(const PyLine& line, const PyTrain& train,
   if (marginals != "on" && marginals != "off" && marginals != "auto") {
     bad_argument("marginals", "'on', 'off' or 'auto'", "'" + marginals + "'");
   }
-  options.measure_marginals =
-      marginals == "on" || (marginals == "auto" && stops.size() - 1 <= 4);
+  options.measure_marginals = marginals == "on" || (marginals == "auto" && stops.size() - 1 <= 4);
   options.min_regime = min_regime;
   require_valid(options);
   const std::vector<physics::Route> routes = data::build_routes(line.line, stops, train.train);
   Interruptible guard(progress);
   options.search.progress = guard.callback();
-  dp::JourneySolution sol = guard.run(
-      [&] { return dp::solve_journey(train.train, routes, dwells, time_s, options); });
+  dp::JourneySolution sol =
+      guard.run([&] { return dp::solve_journey(train.train, routes, dwells, time_s, options); });
   PyRun run;
   run.kind = "journey";
   run.summary = {sol.summary.termination, sol.summary.BriefReport(), sol.summary.FullReport(),
                  sol.warnings};
-  const output::JourneyLabels labels{stops, split, engine.ds_m, engine.dv_kmh,
-                                     sol.summary.threads};
+  const output::JourneyLabels labels{stops, split, engine.ds_m, engine.dv_kmh, sol.summary.threads};
   run.report = output::journey_report_json(
       sol, labels, train.train, output::speed_cap_note(line.line, stops, train.train), min_regime,
-      output::run_provenance_json(
-          line.line, train.train,
-          run_inputs(line, train, stops.front(), stops.back(), engine.objective, engine.ds_m,
-                     engine.dv_kmh),
-          {{"time_s", time_s},
-           {"dwells", dwell_text},
-           {"split", split},
-           {"min_regime_m", min_regime.min_length_m},
-           {"min_regime_s", min_regime.min_duration_s}}));
+      output::run_provenance_json(line.line, train.train,
+                                  run_inputs(line, train, stops.front(), stops.back(),
+                                             engine.objective, engine.ds_m, engine.dv_kmh),
+                                  {{"time_s", time_s},
+                                   {"dwells", dwell_text},
+                                   {"split", split},
+                                   {"min_regime_m", min_regime.min_length_m},
+                                   {"min_regime_s", min_regime.min_duration_s}}));
   run.arrays = per_second_arrays(output::journey_timeline(sol, routes));
   return run_object(std::move(run));
 }
@@ -228,8 +225,8 @@ py::object solve_py(const PyLine& line, const PyTrain& train, const std::string&
   min_regime.min_duration_s = min_regime_s;
   const std::vector<std::string> stops = run_stops(line.line, from, to, pass_through);
   if (stops.size() > 2) {
-    return solve_journey_py(line, train, stops, time_s, dwell, split, marginals, engine,
-                            min_regime, progress);
+    return solve_journey_py(line, train, stops, time_s, dwell, split, marginals, engine, min_regime,
+                            progress);
   }
   return solve_section_py(line, train, from, to, time_s, engine, min_regime, progress);
 }
@@ -304,8 +301,8 @@ PyFrontier frontier_py(const PyLine& line, const PyTrain& train, const std::stri
     const bool tmin = tmin_s > 0.0 && tmin_s < e.minimum_s();
     bad_argument(tmin ? "tmin_s" : "tmax_s",
                  "at least the minimum running time of " +
-                     data::format_number(std::round(e.minimum_s() * 100) / 100) + " s for " +
-                     from + " -> " + to + " (flat-out run)",
+                     data::format_number(std::round(e.minimum_s() * 100) / 100) + " s for " + from +
+                     " -> " + to + " (flat-out run)",
                  data::format_number(tmin ? tmin_s : tmax_s) + " s");
   }
   PyFrontier f;
@@ -373,53 +370,61 @@ void bind_solve(py::module_& m) {
                     "program's --csv (one row per whole second plus the final instant).")
       .def_readonly("kind", &PyRun::kind, "'section', 'journey', 'timing journey' or 'min-time'.")
       .def_readonly("summary", &PyRun::summary)
-      .def("to_dict", [](const PyRun& r) { return to_python(r.report); },
-           "The report as a dict: the document `ecorail ... --json` writes for the same inputs "
-           "(keys: docs/outputs.md).")
-      .def_property_readonly("traction_energy_kJ",
-                             [](const PyRun& r) { return r.number("traction_energy_kJ"); },
-                             "Traction work at the wheel in kJ.")
+      .def(
+          "to_dict", [](const PyRun& r) { return to_python(r.report); },
+          "The report as a dict: the document `ecorail ... --json` writes for the same inputs "
+          "(keys: docs/outputs.md).")
+      .def_property_readonly(
+          "traction_energy_kJ", [](const PyRun& r) { return r.number("traction_energy_kJ"); },
+          "Traction work at the wheel in kJ.")
       .def_property_readonly("braking_energy_kJ",
                              [](const PyRun& r) { return r.number("braking_energy_kJ"); })
-      .def_property_readonly("regen_energy_kJ",
-                             [](const PyRun& r) { return r.number("regen_energy_kJ"); },
-                             "Regenerated energy in kJ.")
+      .def_property_readonly(
+          "regen_energy_kJ", [](const PyRun& r) { return r.number("regen_energy_kJ"); },
+          "Regenerated energy in kJ.")
       .def_property_readonly("net_energy_kJ",
                              [](const PyRun& r) { return r.number("net_energy_kJ"); })
-      .def_property_readonly("running_time_s",
-                             [](const PyRun& r) { return r.number("running_time_s"); },
-                             "Running time in s (dwells excluded).")
+      .def_property_readonly(
+          "running_time_s", [](const PyRun& r) { return r.number("running_time_s"); },
+          "Running time in s (dwells excluded).")
       .def_property_readonly("stop_error_m",
                              [](const PyRun& r) { return r.number("stop_error_m"); })
       .def_property_readonly(
           "lambda_kJ_per_s", [](const PyRun& r) { return r.number("lambda"); },
           "The time price in kJ/s (NaN where there is none).")
-      .def_property_readonly("time_s", [](const PyRun& r) { return to_numpy(r.arrays.time_s); },
-                             "Time since departure in s (float64).")
-      .def_property_readonly("position_m",
-                             [](const PyRun& r) { return to_numpy(r.arrays.position_m); },
-                             "Distance from the start in m (float64).")
-      .def_property_readonly("speed_ms", [](const PyRun& r) { return to_numpy(r.arrays.speed_ms); },
-                             "Speed in m/s (float64).")
+      .def_property_readonly(
+          "time_s", [](const PyRun& r) { return to_numpy(r.arrays.time_s); },
+          "Time since departure in s (float64).")
+      .def_property_readonly(
+          "position_m", [](const PyRun& r) { return to_numpy(r.arrays.position_m); },
+          "Distance from the start in m (float64).")
+      .def_property_readonly(
+          "speed_ms", [](const PyRun& r) { return to_numpy(r.arrays.speed_ms); },
+          "Speed in m/s (float64).")
       .def_property_readonly("accel_m_s2",
                              [](const PyRun& r) { return to_numpy(r.arrays.accel_m_s2); })
-      .def_property_readonly("traction_N",
-                             [](const PyRun& r) { return to_numpy(r.arrays.traction_N); },
-                             "Traction force in N (float64, >= 0).")
-      .def_property_readonly("braking_N", [](const PyRun& r) { return to_numpy(r.arrays.braking_N); },
-                             "Braking force in N (float64, >= 0).")
-      .def_property_readonly("power_W", [](const PyRun& r) { return to_numpy(r.arrays.power_W); },
-                             "Traction power in W (traction force times speed; float64).")
-      .def_property_readonly("km_post_m", [](const PyRun& r) { return to_numpy(r.arrays.km_post_m); })
+      .def_property_readonly(
+          "traction_N", [](const PyRun& r) { return to_numpy(r.arrays.traction_N); },
+          "Traction force in N (float64, >= 0).")
+      .def_property_readonly(
+          "braking_N", [](const PyRun& r) { return to_numpy(r.arrays.braking_N); },
+          "Braking force in N (float64, >= 0).")
+      .def_property_readonly(
+          "power_W", [](const PyRun& r) { return to_numpy(r.arrays.power_W); },
+          "Traction power in W (traction force times speed; float64).")
+      .def_property_readonly("km_post_m",
+                             [](const PyRun& r) { return to_numpy(r.arrays.km_post_m); })
       .def_property_readonly("gradient_permille",
                              [](const PyRun& r) { return to_numpy(r.arrays.gradient_permille); })
       .def_property_readonly("speed_limit_ms",
                              [](const PyRun& r) { return to_numpy(r.arrays.speed_limit_ms); })
-      .def_property_readonly("section", [](const PyRun& r) { return to_numpy(r.arrays.section); },
-                             "Section index of each row (int32).")
-      .def_property_readonly("regime", [](const PyRun& r) { return to_numpy(r.arrays.regime); },
-                             "Regime of each row: full_traction, partial_traction, coast, "
-                             "partial_braking, full_braking, dwell (str array).")
+      .def_property_readonly(
+          "section", [](const PyRun& r) { return to_numpy(r.arrays.section); },
+          "Section index of each row (int32).")
+      .def_property_readonly(
+          "regime", [](const PyRun& r) { return to_numpy(r.arrays.regime); },
+          "Regime of each row: full_traction, partial_traction, coast, "
+          "partial_braking, full_braking, dwell (str array).")
       .def("__repr__", [](const PyRun& r) {
         return "<ecorail.Run " + r.kind + ": " + r.summary.brief_report + ">";
       });
@@ -427,10 +432,12 @@ void bind_solve(py::module_& m) {
   py::class_<PyFrontier>(m, "Frontier",
                          "The energy-time frontier of one section: one re-simulated optimum per "
                          "running time (arrays, float64).")
-      .def("to_dict", [](const PyFrontier& f) { return to_python(f.report); },
-           "The document `ecorail frontier --no-cache --json` writes for the same inputs.")
-      .def_property_readonly("min_time_s", [](const PyFrontier& f) { return f.frontier.min_time_s; },
-                             "The flat-out running time in s.")
+      .def(
+          "to_dict", [](const PyFrontier& f) { return to_python(f.report); },
+          "The document `ecorail frontier --no-cache --json` writes for the same inputs.")
+      .def_property_readonly(
+          "min_time_s", [](const PyFrontier& f) { return f.frontier.min_time_s; },
+          "The flat-out running time in s.")
       .def_property_readonly("monotone", [](const PyFrontier& f) { return f.frontier.monotone; })
       .def_property_readonly("convex", [](const PyFrontier& f) { return f.frontier.convex; })
       .def_property_readonly(
@@ -457,13 +464,13 @@ void bind_solve(py::module_& m) {
             return to_numpy(v);
           },
           "Traction work in kJ.")
-      .def_property_readonly(
-          "regen_energy_kJ",
-          [](const PyFrontier& f) {
-            std::vector<double> v;
-            for (const auto& p : f.frontier.points) v.push_back(units::J_to_kJ(p.regen_J));
-            return to_numpy(v);
-          })
+      .def_property_readonly("regen_energy_kJ",
+                             [](const PyFrontier& f) {
+                               std::vector<double> v;
+                               for (const auto& p : f.frontier.points)
+                                 v.push_back(units::J_to_kJ(p.regen_J));
+                               return to_numpy(v);
+                             })
       .def_property_readonly(
           "cost_kJ",
           [](const PyFrontier& f) {
@@ -484,10 +491,9 @@ void bind_solve(py::module_& m) {
   m.def("solve", &solve_py, py::arg("line"), py::arg("train"), py::kw_only(), py::arg("from_"),
         py::arg("to"), py::arg("time_s"), py::arg("dwell") = py::none(),
         py::arg("split") = "optimal", py::arg("pass_through") = std::vector<std::string>{},
-        py::arg("min_regime_m") = 0.0, py::arg("min_regime_s") = 0.0,
-        py::arg("marginals") = "auto", py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
-        py::arg("objective") = "traction", py::arg("cruise") = "hold", py::arg("threads") = 0,
-        py::arg("progress") = py::none(),
+        py::arg("min_regime_m") = 0.0, py::arg("min_regime_s") = 0.0, py::arg("marginals") = "auto",
+        py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("objective") = "traction",
+        py::arg("cruise") = "hold", py::arg("threads") = 0, py::arg("progress") = py::none(),
         (std::string("Least-energy run from from_ to to in time_s seconds of running (dwells "
                      "excluded), as `ecorail solve`. With stops between them it is a journey: "
                      "dwell gives the dwells (seconds for every stop, {'A7': 45} by station with "

@@ -93,15 +93,16 @@ timetable::FleetProblem fleet_problem(const FleetArgs& a) {
 FleetSetup setup_line(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
   FleetSetup s;
   const auto model = timetable::model_from_name(a.model);
-  if (!model) bad_argument("model", "'power-flow', 'overlap', 'sections' or 'network'", "'" + a.model + "'");
+  if (!model)
+    bad_argument("model", "'power-flow', 'overlap', 'sections' or 'network'", "'" + a.model + "'");
   s.model.model = *model;
   const auto variant = timetable::overlap_variant_from_name(a.overlap);
   if (!variant) bad_argument("overlap", "'ahead' or 'either'", "'" + a.overlap + "'");
   s.model.overlap = *variant;
-  s.model.time_step_s = std::isnan(a.step_s) ? (*model == timetable::EnergyModel::Network
-                                                    ? timetable::kNetworkTimeStep_s
-                                                    : 0.01)
-                                             : a.step_s;
+  s.model.time_step_s =
+      std::isnan(a.step_s)
+          ? (*model == timetable::EnergyModel::Network ? timetable::kNetworkTimeStep_s : 0.01)
+          : a.step_s;
   s.model.section_boundaries_m = a.sections_at_m;
   if (*model == timetable::EnergyModel::Network) {
     if (a.power_supply.empty()) {
@@ -110,17 +111,21 @@ FleetSetup setup_line(const PyLine& line, const PyTrain& train, const FleetArgs&
     s.model.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(a.power_supply));
   } else if (!a.power_supply.empty()) {
-    bad_argument("power_supply", "model='network' (the other models have no supply network)", "a file");
+    bad_argument("power_supply", "model='network' (the other models have no supply network)",
+                 "a file");
   }
   if (*model == timetable::EnergyModel::Sections && s.model.section_boundaries_m.empty()) {
-    bad_argument("sections_at_m", "at least one supply-section boundary (m) for model='sections'", "none");
+    bad_argument("sections_at_m", "at least one supply-section boundary (m) for model='sections'",
+                 "none");
   }
   if (train.train.has_efficiency_maps()) {
-    bad_argument("train", "a train with constant efficiencies for the fleet models", "'" + train.train.name + "'");
+    bad_argument("train", "a train with constant efficiencies for the fleet models",
+                 "'" + train.train.name + "'");
   }
   s.model.traction_efficiency = train.train.traction_efficiency;
   require_valid(s.model);
-  if (!(a.trip_time_s > 0.0)) bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
+  if (!(a.trip_time_s > 0.0))
+    bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
   if (!(a.dwell_s >= 0.0)) bad_argument("dwell_s", "a dwell in s >= 0", std::to_string(a.dwell_s));
   s.stops = data::stops_between(line.line, line.line.stations.front().name,
                                 line.line.stations.back().name);
@@ -163,9 +168,8 @@ void finish(PyFleet& out, const FleetSetup& s, const timetable::FleetEvaluation&
       ev.model == timetable::EnergyModel::Sections) {
     auto balance = s.models->make_balance();
     balance->place_all(ev.departures_s);
-    const double end_s = ev.departures_s.empty()
-                             ? 0.0
-                             : ev.departures_s.back() + s.pattern.pattern.trip_time_s();
+    const double end_s =
+        ev.departures_s.empty() ? 0.0 : ev.departures_s.back() + s.pattern.pattern.trip_time_s();
     const auto trace = balance->trace(0.0, end_s);
     out.trace_start_s = trace.start_s;
     out.trace_step_s = trace.step_s;
@@ -191,7 +195,9 @@ std::vector<int> given_departures(const FleetSetup& s, const py::object& departu
     t = timetable::departures_from_headways(timetable::uniform_headways(s.problem));
   }
   const std::string why = timetable::departures_problem(s.problem, t);
-  if (!why.empty()) bad_argument(departures_s.is_none() ? "headways_s" : "departures_s", "departures that keep the problem", why);
+  if (!why.empty())
+    bad_argument(departures_s.is_none() ? "headways_s" : "departures_s",
+                 "departures that keep the problem", why);
   return t;
 }
 
@@ -340,12 +346,12 @@ void bind_timetable(py::module_& m) {
                       "A fleet timetable's energy: substation = traction - regenerated energy "
                       "used by other trains, in kJ; power per bin in W.")
       .def_readonly("summary", &PyFleet::summary)
-      .def("to_dict", [](const PyFleet& f) { return to_python(f.report); },
-           "The energy document of `ecorail timetable evaluate|optimise --json` (without the "
-           "separation check's keys).")
+      .def(
+          "to_dict", [](const PyFleet& f) { return to_python(f.report); },
+          "The energy document of `ecorail timetable evaluate|optimise --json` (without the "
+          "separation check's keys).")
       .def_property_readonly(
-          "departures_s",
-          [](const PyFleet& f) { return to_numpy(f.evaluation.departures_s); },
+          "departures_s", [](const PyFleet& f) { return to_numpy(f.evaluation.departures_s); },
           "Departure of each train from the first station, s (int32).")
       .def_property_readonly(
           "headways_s",
@@ -368,9 +374,8 @@ void bind_timetable(py::module_& m) {
       .def_property_readonly(
           "per_train_substation_kJ",
           [](const PyFleet& f) {
-            return to_numpy(per_train(f.evaluation, [](const timetable::FleetEnergy& e) {
-              return e.substation_J();
-            }));
+            return to_numpy(per_train(
+                f.evaluation, [](const timetable::FleetEnergy& e) { return e.substation_J(); }));
           },
           "Substation energy of each train, kJ (float64).")
       .def_property_readonly(
@@ -383,24 +388,24 @@ void bind_timetable(py::module_& m) {
           },
           "Start of each power bin on the timetable clock, s (power-flow and sections models; "
           "empty otherwise).")
-      .def_property_readonly("traction_power_W",
-                             [](const PyFleet& f) { return to_numpy(f.traction_W); },
-                             "Traction power of all trains per bin, W.")
-      .def_property_readonly("regen_power_W", [](const PyFleet& f) { return to_numpy(f.regen_W); },
-                             "Regenerated power per bin, W.")
-      .def_property_readonly("used_regen_power_W",
-                             [](const PyFleet& f) { return to_numpy(f.used_W); },
-                             "Regenerated power used by other trains per bin, W.");
+      .def_property_readonly(
+          "traction_power_W", [](const PyFleet& f) { return to_numpy(f.traction_W); },
+          "Traction power of all trains per bin, W.")
+      .def_property_readonly(
+          "regen_power_W", [](const PyFleet& f) { return to_numpy(f.regen_W); },
+          "Regenerated power per bin, W.")
+      .def_property_readonly(
+          "used_regen_power_W", [](const PyFleet& f) { return to_numpy(f.used_W); },
+          "Regenerated power used by other trains per bin, W.");
 
   py::class_<PyFleetLine>(tt, "Fleet",
                           "The line's sections, an energy model and the pattern every train "
                           "drives (the optimal split of trip_time_s with dwell_s at every stop), "
                           "built once: evaluate and optimise then cost only the timetable.")
       .def(py::init([](const PyLine& line, const PyTrain& train, const std::string& model,
-                       const std::string& overlap, double step_s,
-                       std::vector<double> sections_at_m, py::object power_supply,
-                       double trip_time_s, double dwell_s, double ds_m, double dv_kmh,
-                       int threads) {
+                       const std::string& overlap, double step_s, std::vector<double> sections_at_m,
+                       py::object power_supply, double trip_time_s, double dwell_s, double ds_m,
+                       double dv_kmh, int threads) {
              FleetArgs a;
              add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m),
                             std::move(power_supply), 100, 63900, {120, 660}, trip_time_s, dwell_s,
@@ -415,8 +420,8 @@ void bind_timetable(py::module_& m) {
       .def(
           "evaluate",
           [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
-             int trains, int span_s, Range headway_s, Range dwell_range_s,
-             std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s) {
+             int trains, int span_s, Range headway_s, Range dwell_range_s, std::vector<Range> peaks,
+             Range peak_headway_s, Range offpeak_headway_s) {
             return evaluate_py(f,
                                with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                             std::move(peaks), peak_headway_s, offpeak_headway_s),
@@ -481,8 +486,8 @@ void bind_timetable(py::module_& m) {
          const std::string& overlap, double step_s, std::vector<double> sections_at_m,
          py::object power_supply, int trains, int span_s, Range headway_s, double trip_time_s,
          double dwell_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
-         Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts,
-         long moves, double anneal_step_s, double ds_m, double dv_kmh, int threads,
+         Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, long moves,
+         double anneal_step_s, double ds_m, double dv_kmh, int threads,
          const py::object& progress) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
