@@ -57,15 +57,7 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
   // The train the fit makes, read back through the loader `solve` uses: a fit that converged
   // to an envelope no run can use (forces all 0, a train that cannot start) is bad input, and
   // neither file is written.
-  physics::Train t = base;
-  double top_kmh = units::ms_to_kmh(base.max_speed_ms);
-  for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
-  const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
-  if (kind == EnvelopeKind::Traction) {
-    t.traction = env;
-  } else {
-    t.braking = env;
-  }
+  const physics::Train t = train_with_envelope(base, points, fit, kind);
   const std::string toml = data::train_to_toml(t);
   const std::string label =
       a.out.empty() || data::is_stdout_path(a.out) ? "the fitted train" : a.out;

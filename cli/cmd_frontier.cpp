@@ -23,6 +23,7 @@
 #include "output/frontier_io.hpp"
 #include "output/gnuplot.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -171,16 +172,14 @@ void run_frontier(const FrontierArgs& a) {
   // All outputs or none: temporaries renamed together once every one was written.
   data::OutputBatch batch;
   if (!a.json.empty()) {
-    nlohmann::json j = nlohmann::json::array();
-    for (const auto& lf : frontiers) j.push_back(output::frontier_json(lf));
-    nlohmann::json doc = a.all ? nlohmann::json{{"frontiers", j}} : j[0];
-    doc["grid"] = {{"ds_m", a.problem.ds_m}, {"dv_kmh", a.problem.dv_kmh}};
-    doc["provenance"] = run_provenance(p, a.problem,
-                                       {{"tmin_s", a.t_min},
-                                        {"tmax_s", a.t_max},
-                                        {"step_s", a.step},
-                                        {"all", a.all},
-                                        {"cache", !a.no_cache}});
+    const nlohmann::json doc =
+        output::frontier_report_json(frontiers, a.all, a.problem.ds_m, a.problem.dv_kmh,
+                                     run_provenance(p, a.problem,
+                                                    {{"tmin_s", a.t_min},
+                                                     {"tmax_s", a.t_max},
+                                                     {"step_s", a.step},
+                                                     {"all", a.all},
+                                                     {"cache", !a.no_cache}}));
     batch.add(a.json, [&](std::ostream& o) { output::write_json(o, doc); });
   }
   if (!a.csv.empty())

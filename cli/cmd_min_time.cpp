@@ -6,6 +6,7 @@
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "physics/trip.hpp"
 #include "physics/units.hpp"
 
@@ -30,19 +31,14 @@ void run_min_time(const MinTimeArgs& a) {
       "stop error %.3f m\n",
       p.route.from_name().c_str(), p.route.to_name().c_str(), p.route.length_m(),
       sim.running_time_s, units::J_to_kJ(sim.energy.traction_work_J), sim.stop_error_m);
-  nlohmann::json j = output::run_json(sim);
-  j["from"] = p.route.from_name();
-  j["to"] = p.route.to_name();
-  j["distance_m"] = p.route.length_m();
-  j["min_running_time_s"] = sim.running_time_s;
-  j["auxiliary_energy_kJ"] = output::auxiliary_energy_kJ(p.train, sim.running_time_s);
+  const nlohmann::json j =
+      output::min_time_report_json(p.route, sim, p.train, run_provenance(p, a.problem));
   // The per-second table is read from the run laid out as a trip.
   const output::Timeline timeline =
       output::trip_timeline(physics::Trip({{&p.route, &sim, 0.0}}, 0.0, p.train.regen_efficiency));
   char title[200];
   std::snprintf(title, sizeof title, "%s -> %s flat out: %.2f s", p.route.from_name().c_str(),
                 p.route.to_name().c_str(), sim.running_time_s);
-  j["provenance"] = run_provenance(p, a.problem);
   write_outputs(a.outputs, j, timeline, title, {});
 }
 

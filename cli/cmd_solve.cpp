@@ -16,6 +16,7 @@
 #include "dp/section_solve.hpp"
 #include "dp/text_format.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "physics/trip.hpp"
 #include "physics/units.hpp"
 
@@ -112,7 +113,7 @@ void run_solve(const SolveArgs& a, const CLI::App& cmd) {
   // Warnings go with either report (the full one lists them itself).
   std::fputs((a.full_report ? s.FullReport() : s.BriefReport() + warnings_text(s.warnings)).c_str(),
              out);
-  const std::string cap_note = speed_cap_note(p.line, {s.from, s.to}, p.train);
+  const std::string cap_note = output::speed_cap_note(p.line, {s.from, s.to}, p.train);
   if (!cap_note.empty()) std::fprintf(out, "  note: %s\n", cap_note.c_str());
   if (!s.IsSolutionUsable()) {
     std::fflush(out);
@@ -128,13 +129,12 @@ void run_solve(const SolveArgs& a, const CLI::App& cmd) {
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s: %.2f s, traction %.0f kJ", s.from.c_str(),
                 s.to.c_str(), s.running_time_s, s.traction_energy_kJ);
-  nlohmann::json report = output::section_solution_json(solution);
-  report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
-  report["auxiliary_energy_kJ"] = output::auxiliary_energy_kJ(p.train, s.running_time_s);
-  report["provenance"] = run_provenance(p, a.problem,
-                                        {{"time_s", a.time_s},
-                                         {"min_regime_m", options.min_regime.min_length_m},
-                                         {"min_regime_s", options.min_regime.min_duration_s}});
+  const nlohmann::json report = output::section_report_json(
+      solution, p.train, cap_note,
+      run_provenance(p, a.problem,
+                     {{"time_s", a.time_s},
+                      {"min_regime_m", options.min_regime.min_length_m},
+                      {"min_regime_s", options.min_regime.min_duration_s}}));
   write_outputs(a.outputs, report, timeline, title, summary_rows(s), &trip, &p.line);
 }
 

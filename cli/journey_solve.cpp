@@ -16,6 +16,7 @@
 #include "dp/text_format.hpp"
 #include "output/journey_json.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::cli {
@@ -40,26 +41,6 @@ std::FILE* report_stream(const OutputOptions& o) {
     if (!path->empty() && data::is_stdout_path(*path)) return stderr;
   }
   return stdout;
-}
-
-std::string speed_cap_note(const data::Line& line, const std::vector<std::string>& stops,
-                           const physics::Train& train) {
-  const data::Station* a = line.find_station(stops.front());
-  const data::Station* b = line.find_station(stops.back());
-  if (a == nullptr || b == nullptr) return "";
-  const double lo = std::min(a->km_post_m, b->km_post_m), hi = std::max(a->km_post_m, b->km_post_m);
-  const double vmax_kmh = units::ms_to_kmh(train.max_speed_ms);
-  double highest_kmh = 0.0;
-  for (const auto& r : line.limits) {
-    const double r_lo = std::min(r.start_km_post_m, r.end_km_post_m);
-    const double r_hi = std::max(r.start_km_post_m, r.end_km_post_m);
-    if (r_hi > lo && r_lo < hi && r.value > vmax_kmh + 1e-9)
-      highest_kmh = std::max(highest_kmh, r.value);
-  }
-  if (highest_kmh == 0.0) return "";
-  return dp::format_text(
-      "line limits up to %.1f km/h are above the train's maximum speed and capped at %.1f km/h",
-      highest_kmh, vmax_kmh);
 }
 
 std::string warnings_text(const std::vector<std::string>& warnings) {
@@ -109,7 +90,7 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
 
   std::FILE* out = report_stream(outputs);
   std::fputs(sol.summary.BriefReport().c_str(), out);
-  const std::string cap_note = speed_cap_note(p.line, stops, p.train);
+  const std::string cap_note = output::speed_cap_note(p.line, stops, p.train);
   if (!cap_note.empty()) std::fprintf(out, "  note: %s\n", cap_note.c_str());
   if (sol.summary.streamed_tables) {
     std::fprintf(out,
@@ -156,23 +137,14 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
   const output::Timeline timeline = output::journey_timeline(sol, routes);
   output::JourneyLabels labels{stops, args.split, problem.ds_m, problem.dv_kmh,
                                sol.summary.threads};
-  nlohmann::json report = output::journey_json(sol, labels);
-  report["provenance"] = run_provenance(p, problem,
-                                        {{"time_s", time_s},
-                                         {"dwells", args.dwells},
-                                         {"split", args.split},
-                                         {"min_regime_m", args.min_regime.min_length_m},
-                                         {"min_regime_s", args.min_regime.min_duration_s}});
-  report["notes"] = cap_note.empty() ? nlohmann::json::array() : nlohmann::json::array({cap_note});
-  report["auxiliary_energy_kJ"] =
-      output::auxiliary_energy_kJ(p.train, report.at("trip_time_s").get<double>());
-  if (args.min_regime.active()) {
-    report["min_regime"] = {{"min_length_m", args.min_regime.min_length_m},
-                            {"min_duration_s", args.min_regime.min_duration_s},
-                            {"merged_phases", sol.merged_regimes},
-                            {"unmerged_energy_kJ", units::J_to_kJ(sol.unmerged_cost_J)},
-                            {"cost_kJ", units::J_to_kJ(sol.merged_cost_J - sol.unmerged_cost_J)}};
-  }
+  const nlohmann::json report = output::journey_report_json(
+      sol, labels, p.train, cap_note, args.min_regime,
+      run_provenance(p, problem,
+                     {{"time_s", time_s},
+                      {"dwells", args.dwells},
+                      {"split", args.split},
+                      {"min_regime_m", args.min_regime.min_length_m},
+                      {"min_regime_s", args.min_regime.min_duration_s}}));
   char title[256];
   std::snprintf(title, sizeof title, "%s -> %s (%s split): %.2f s running, traction %.0f kJ",
                 stops.front().c_str(), stops.back().c_str(), args.split.c_str(), sol.running_time_s,

@@ -25,11 +25,6 @@ struct JourneyArgs {
 // Where the human report goes: stderr when an output is written to standard output ("-"), so
 // that stdout carries only that output; stdout otherwise.
 std::FILE* report_stream(const OutputOptions& outputs);
-// The note a report carries when the line allows more than the train can run on the way from
-// stops.front() to stops.back(): those limits are capped at the train's maximum speed
-// (data::build_route). Empty when no limit is capped.
-std::string speed_cap_note(const data::Line& line, const std::vector<std::string>& stops,
-                           const physics::Train& train);
 // "  warning: ..." lines, one per warning.
 std::string warnings_text(const std::vector<std::string>& warnings);
 

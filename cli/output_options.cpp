@@ -12,6 +12,7 @@
 #include "output/gtfs_writer.hpp"
 #include "output/provenance.hpp"
 #include "output/run_json.hpp"
+#include "output/solve_reports.hpp"
 #include "output/speed_plot.hpp"
 
 namespace ecorail::cli {
@@ -321,14 +322,15 @@ void check_output_targets(const OutputOptions& o) {
 
 nlohmann::json run_provenance(const Problem& problem, const ProblemOptions& options,
                               const nlohmann::json& extra_options) {
-  nlohmann::json opts = {{"line", options.line_path.empty() ? "embedded" : options.line_path},
-                         {"train", options.train_path.empty() ? "embedded" : options.train_path},
-                         {"from", options.from},
-                         {"to", options.to},
-                         {"objective", options.objective}};
-  for (const auto& [key, value] : extra_options.items()) opts[key] = value;
-  return output::provenance_json(problem.line, problem.train,
-                                 {{"ds_m", options.ds_m}, {"dv_kmh", options.dv_kmh}}, opts);
+  output::RunInputs inputs;
+  if (!options.line_path.empty()) inputs.line = options.line_path;
+  if (!options.train_path.empty()) inputs.train = options.train_path;
+  inputs.from = options.from;
+  inputs.to = options.to;
+  inputs.objective = options.objective;
+  inputs.ds_m = options.ds_m;
+  inputs.dv_kmh = options.dv_kmh;
+  return output::run_provenance_json(problem.line, problem.train, inputs, extra_options);
 }
 
 void write_outputs(const OutputOptions& o, const nlohmann::json& report,

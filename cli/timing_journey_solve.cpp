@@ -13,6 +13,7 @@
 #include "dp/text_format.hpp"
 #include "dp/timing_journey.hpp"
 #include "output/journey_json.hpp"
+#include "output/solve_reports.hpp"
 #include "output/timeline.hpp"
 #include "physics/units.hpp"
 
@@ -20,41 +21,10 @@ namespace ecorail::cli {
 
 namespace {
 
-nlohmann::json bound_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-nlohmann::json kmh_or_null(double v_ms) {
-  return std::isfinite(v_ms) ? nlohmann::json(units::ms_to_kmh(v_ms)) : nlohmann::json(nullptr);
-}
-
 std::string binds_text(const std::vector<std::string>& binds) {
   std::string t;
   for (const auto& b : binds) t += (t.empty() ? "" : ",") + b;
   return t.empty() ? "-" : t;
-}
-
-nlohmann::json windows_json(const dp::TimingJourneySolution& sol) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& w : sol.windows) {
-    nlohmann::json binds;
-    if (w.binds.empty()) {
-      binds = nullptr;
-    } else if (w.binds.size() == 1) {
-      binds = w.binds.front();
-    } else {
-      binds = w.binds;
-    }
-    list.push_back({{"position_m", w.window.position_m},
-                    {"earliest_s", bound_or_null(w.window.earliest_s)},
-                    {"latest_s", bound_or_null(w.window.latest_s)},
-                    {"min_speed_kmh", kmh_or_null(w.window.min_speed_ms)},
-                    {"max_speed_kmh", kmh_or_null(w.window.max_speed_ms)},
-                    {"time_s", bound_or_null(w.time_s)},
-                    {"speed_kmh", kmh_or_null(w.speed_ms)},
-                    {"met", w.met},
-                    {"binds", binds}});
-  }
-  return list;
 }
 
 }  // namespace
@@ -119,31 +89,10 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
         "output was written");
   }
 
-  std::vector<std::string> stops;
-  for (const auto& part : sol.parts) stops.push_back(dp::format_text("%.1f m", part.start_m));
-  stops.push_back(dp::format_text("%.1f m", sol.parts.back().end_m));
   const output::Timeline timeline = output::journey_timeline(sol.journey, sol.routes);
-  output::JourneyLabels labels{stops, "timing points", problem.ds_m, problem.dv_kmh, 0};
-  nlohmann::json report = output::journey_json(sol.journey, labels);
-  report["journey"] = journey.id;
-  report["windows_met"] = sol.windows_met;
-  report["windows"] = windows_json(sol);
-  report["trip_time_s"] = s.trip_time_s;
-  report["departure_s"] = sol.parts.front().departure_s;
-  nlohmann::json parts = nlohmann::json::array();
-  for (const auto& part : sol.parts) {
-    nlohmann::json lambdas = nlohmann::json::array();
-    for (double l : part.stretch_lambda_J_per_s) lambdas.push_back(l / 1000.0);
-    parts.push_back({{"from_m", part.start_m},
-                     {"to_m", part.end_m},
-                     {"departure_s", part.departure_s},
-                     {"arrival_target_s", part.arrival_target_s},
-                     {"stretch_lambda_kJ_per_s", lambdas},
-                     {"price_evaluations", part.evaluations}});
-  }
-  report["parts"] = parts;
-  report["provenance"] = run_provenance(p, problem, {{"journey", journey_path}});
-  report["notes"] = nlohmann::json::array();
+  const nlohmann::json report =
+      output::timing_journey_report_json(sol, journey.id, problem.ds_m, problem.dv_kmh,
+                                         run_provenance(p, problem, {{"journey", journey_path}}));
   char title[256];
   std::snprintf(title, sizeof title, "%s: %.2f s running, traction %.0f kJ", journey.id.c_str(),
                 sol.journey.running_time_s, s.traction_energy_kJ);

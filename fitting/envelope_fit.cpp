@@ -386,6 +386,21 @@ EnvelopeFitResult fit_envelope(const std::vector<EnvelopePoint>& points,
   return r;
 }
 
+physics::Train train_with_envelope(const physics::Train& base,
+                                   const std::vector<EnvelopePoint>& points, const FormFit& fit,
+                                   EnvelopeKind kind) {
+  physics::Train t = base;
+  double top_kmh = units::ms_to_kmh(base.max_speed_ms);
+  for (const auto& p : points) top_kmh = std::max(top_kmh, p.speed_kmh);
+  const physics::ForceEnvelope env = to_force_envelope(fit, top_kmh);
+  if (kind == EnvelopeKind::Traction) {
+    t.traction = env;
+  } else {
+    t.braking = env;
+  }
+  return t;
+}
+
 physics::ForceEnvelope to_force_envelope(const FormFit& fit, double top_kmh) {
   if (fit.form == EnvelopeForm::ConstantPower) {
     return physics::ForceEnvelope::piecewise({{0.0, std::max(top_kmh, 1.0), {fit.force_max_kN}}},

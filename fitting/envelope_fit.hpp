@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "physics/force_envelope.hpp"
+#include "physics/train.hpp"
 
 namespace ecorail::fitting {
 
@@ -76,6 +77,11 @@ EnvelopeFitResult fit_envelope(const std::vector<EnvelopePoint>& points,
 
 // The fitted form as an engine envelope, the last piece running to top_kmh.
 physics::ForceEnvelope to_force_envelope(const FormFit& fit, double top_kmh);
+// The base train with a fitted envelope of the kind given in place of its own, reaching the
+// higher of the train's maximum speed and the fastest point (what `fit-envelope --out` writes).
+physics::Train train_with_envelope(const physics::Train& base,
+                                   const std::vector<EnvelopePoint>& points, const FormFit& fit,
+                                   EnvelopeKind kind);
 
 std::string_view form_name(EnvelopeForm f);
 std::string_view kind_name(EnvelopeKind k);
