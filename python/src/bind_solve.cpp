@@ -356,10 +356,10 @@ py::object journey_py(const PyLine& line, const PyTrain& train, const py::object
 }
 
 constexpr const char* kEngineDoc =
-    "ds_m, dv_kmh: grid steps (m, km/h; default 5 m, 0.2 km/h). objective: 'traction' "
-    "(traction energy) or 'net' (also credit regenerated energy). cruise: 'hold' (a long cruise "
-    "as one polished speed hold) or 'grid'. threads: OpenMP threads (0: all cores; results do "
-    "not depend on it).";
+    "\n  ds_m, dv_kmh: grid steps in m and km/h (default 5 m, 0.2 km/h)"
+    "\n  objective: 'traction' (traction energy) or 'net' (also credit regenerated energy)"
+    "\n  cruise: 'hold' (a long cruise as one polished speed hold) or 'grid'"
+    "\n  threads: OpenMP threads (0: all cores; results do not depend on it)";
 
 }  // namespace
 
@@ -494,17 +494,20 @@ void bind_solve(py::module_& m) {
         py::arg("min_regime_m") = 0.0, py::arg("min_regime_s") = 0.0, py::arg("marginals") = "auto",
         py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("objective") = "traction",
         py::arg("cruise") = "hold", py::arg("threads") = 0, py::arg("progress") = py::none(),
-        (std::string("Least-energy run from from_ to to in time_s seconds of running (dwells "
-                     "excluded), as `ecorail solve`. With stops between them it is a journey: "
-                     "dwell gives the dwells (seconds for every stop, {'A7': 45} by station with "
-                     "'*' for the rest, or the program's strings ['A7=45', '30']), split is "
-                     "'optimal' (one time price) or 'proportional'; pass_through lists stations "
-                     "passed without stopping. min_regime_m / min_regime_s merge shorter control "
-                     "phases. marginals: 'on', 'off', 'auto' (journeys of up to 4 sections). ") +
+        (std::string(
+             "Least-energy run from from_ to to, as `ecorail solve`; every figure re-simulated.\n"
+             "\n  time_s: running time in s (dwells excluded)"
+             "\n  dwell: with stops between from_ and to (a journey): seconds at every stop, "
+             "{'A7': 45} by station ('*': the rest), or ['A7=45', '30']"
+             "\n  split: 'optimal' (one time price for all sections) or 'proportional'"
+             "\n  pass_through: stations passed without stopping"
+             "\n  min_regime_m, min_regime_s: merge control phases shorter than this (m, s)"
+             "\n  marginals: 'on', 'off', 'auto' (journeys of up to 4 sections)") +
          kEngineDoc +
-         " progress(stage, done, total) is called between stages (may raise to stop). "
-         "Returns an ecorail.Run; a run that misses its stop or time raises ecorail.SolveError; "
-         "bad input raises ValueError naming the argument; Ctrl-C raises KeyboardInterrupt.")
+         "\n  progress: progress(stage, done, total), called between stages; may raise to stop"
+         "\n\nReturns an ecorail.Run (kJ, s, m; per-second numpy arrays). A run that misses its "
+         "stop or time raises ecorail.SolveError; bad input raises ValueError naming the "
+         "argument; Ctrl-C raises KeyboardInterrupt.")
             .c_str());
   m.def("min_time", &min_time_py, py::arg("line"), py::arg("train"), py::kw_only(),
         py::arg("from_"), py::arg("to"), py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
@@ -517,10 +520,11 @@ void bind_solve(py::module_& m) {
         py::arg("step_s") = 1.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
         py::arg("objective") = "traction", py::arg("cruise") = "hold", py::arg("threads") = 0,
         py::arg("progress") = py::none(),
-        (std::string("Energy-time frontier of one section, as `ecorail frontier --no-cache`: one "
-                     "optimum every step_s seconds from tmin_s (0: the flat-out time) to tmax_s "
-                     "(0: flat-out + 60 s). ") +
-         kEngineDoc)
+        (std::string("Energy-time frontier of one section, as `ecorail frontier --no-cache`.\n"
+                     "\n  tmin_s: first running time in s (0: the flat-out time)"
+                     "\n  tmax_s: last running time in s (0: flat-out + 60 s)"
+                     "\n  step_s: time step in s") +
+         kEngineDoc + "\n  progress: progress(stage, done, total) after each point; may raise")
             .c_str());
   m.def("journey", &journey_py, py::arg("line"), py::arg("train"), py::arg("journey"),
         py::kw_only(), py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,

@@ -102,3 +102,18 @@ def test_montecarlo_matches_cli(reference, run_cli, cache_dir):
     assert one.substation_energy_kJ["mean"] == pytest.approx(np.mean(one.day_substation_kJ),
                                                              rel=1e-12)
     assert 0.0 <= one.punctuality["mean"] <= 1.0
+
+
+def test_peak_windows_match_cli(reference, run_cli):
+    line, train = reference
+    peaks = ["--peak", "7200:12600", "--peak", "43200:50400"]
+    cli = run_cli("timetable", "evaluate", "--model", "overlap", "--overlap", "either",
+                  "--trains", "240", *peaks, "--uniform", "--quiet")
+    fleet = ecorail.timetable.Fleet(line, train, model="overlap", overlap="either")
+    r = fleet.evaluate(trains=240, peaks=[(7200, 12600), (43200, 50400)])
+    assert r.to_dict() == cli
+    assert r.departures_s.shape == (240,)
+    # The same fleet object evaluates another problem on the same sections and pattern.
+    day = fleet.evaluate()
+    assert day.departures_s.shape == (100,)
+    assert day.traction_energy_kJ / 100 == pytest.approx(r.traction_energy_kJ / 240, rel=1e-12)

@@ -169,3 +169,27 @@ def test_type_stubs_name_every_public_name():
             if issubclass(obj, __import__("enum").Enum) or hasattr(obj, "__members__"):
                 continue
             assert members <= stubbed, (name, members - stubbed)
+
+
+def test_another_cpython_of_the_same_version_imports_the_module():
+    """docs/python.md: another CPython 3.X on PATH loads the extension and, without numpy of its
+    own, gets Debian's numpy when that was built for its extension suffix."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    other = shutil.which("python3")
+    if not other or os.path.realpath(other) == os.path.realpath(sys.executable):
+        pytest.skip("no other python3 on PATH")
+    probe = subprocess.run([other, "-c", "import sys; print(sys.version_info[:2])"],
+                           capture_output=True, text=True)
+    if probe.stdout.strip() != str(tuple(sys.version_info[:2])):
+        pytest.skip(f"{other} is another minor version ({probe.stdout.strip()})")
+    code = ("import ecorail, numpy; r = ecorail.solve(ecorail.Line.reference(), "
+            "ecorail.Train.reference(), from_='A6', to='A7', time_s=110); "
+            "assert isinstance(r.speed_ms, numpy.ndarray); print(f'{r.traction_energy_kJ:.1f}')")
+    proc = subprocess.run([other, "-c", code], capture_output=True, text=True,
+                          env=dict(os.environ))
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip() == "34898.0"
