@@ -137,8 +137,13 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
     const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
     return fail(2, data::InputError("command line", 0, flag, time_message(e)).what());
   } catch (const policy::LadderRungError& e) {
-    const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
-    return fail(2, data::InputError("command line", 0, flag, e.what()).what());
+    if (e.offset_s() == 0.0) {
+      return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
+    }
+    return fail(2, data::InputError(
+                       "command line", 0, "--lambda-ladder",
+                       std::string("offsets whose running times the engine solves; ") + e.what())
+                       .what());
   } catch (const dp::InfeasibleTimeError& e) {
     return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
   } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short
