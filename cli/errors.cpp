@@ -85,9 +85,24 @@ void throw_on_flag(const std::string& why, std::initializer_list<FieldFlag> flag
         break;
       }
     }
+    // "must be in (0, 100] m" reads "expected a value in (0, 100] m".
+    if (rest.rfind("in ", 0) == 0) rest = "a value " + rest;
     throw data::InputError("command line", 0, f.flag, rest);
   }
   throw InvalidOptionsError(why);
+}
+
+void throw_on_known_flag(const std::string& why) {
+  throw_on_flag(why, {{"grid ds_m", "--ds"},
+                      {"grid dv_kmh", "--dv"},
+                      {"threads", "--threads"},
+                      {"objective", "--objective"},
+                      {"t_min_s", "--tmin"},
+                      {"t_max_s", "--tmax"},
+                      {"step_s", "--step"},
+                      {"min_length_m", "--min-regime-m"},
+                      {"min_duration_s", "--min-regime-s"},
+                      {"split", "--split"}});
 }
 
 void parse_integers_strictly(CLI::App& app) {
