@@ -85,9 +85,24 @@ void throw_on_flag(const std::string& why, std::initializer_list<FieldFlag> flag
         break;
       }
     }
+    // "must be in (0, 100] m" reads "expected a value in (0, 100] m".
+    if (rest.rfind("in ", 0) == 0) rest = "a value " + rest;
     throw data::InputError("command line", 0, f.flag, rest);
   }
   throw InvalidOptionsError(why);
+}
+
+void throw_on_known_flag(const std::string& why) {
+  throw_on_flag(why, {{"grid ds_m", "--ds"},
+                      {"grid dv_kmh", "--dv"},
+                      {"threads", "--threads"},
+                      {"objective", "--objective"},
+                      {"t_min_s", "--tmin"},
+                      {"t_max_s", "--tmax"},
+                      {"step_s", "--step"},
+                      {"min_length_m", "--min-regime-m"},
+                      {"min_duration_s", "--min-regime-s"},
+                      {"split", "--split"}});
 }
 
 void parse_integers_strictly(CLI::App& app) {
@@ -137,8 +152,13 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
     const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
     return fail(2, data::InputError("command line", 0, flag, time_message(e)).what());
   } catch (const policy::LadderRungError& e) {
-    const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
-    return fail(2, data::InputError("command line", 0, flag, e.what()).what());
+    if (e.offset_s() == 0.0) {
+      return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
+    }
+    return fail(2, data::InputError(
+                       "command line", 0, "--lambda-ladder",
+                       std::string("offsets whose running times the engine solves; ") + e.what())
+                       .what());
   } catch (const dp::InfeasibleTimeError& e) {
     return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
   } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short

@@ -17,11 +17,17 @@ class InvalidOptionsError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Checks a library options struct before any work (exit 2 with its message).
+// An IsValid message on the flag that sets the field it names, for the fields the shared flags
+// set (--ds, --dv, --threads, --objective, --tmin, --tmax, --step, --min-regime-m,
+// --min-regime-s, --split); InvalidOptionsError with the message otherwise.
+[[noreturn]] void throw_on_known_flag(const std::string& why);
+
+// Checks a library options struct before any work (exit 2): a field a flag of the program sets
+// is reported on that flag (throw_on_known_flag), any other as its message says.
 template <typename Options>
 void require_valid(const Options& options) {
   std::string why;
-  if (!options.IsValid(&why)) throw InvalidOptionsError(why);
+  if (!options.IsValid(&why)) throw_on_known_flag(why);
 }
 
 // Which command-line flag sets which field of a library options struct.

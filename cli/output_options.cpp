@@ -186,11 +186,11 @@ std::vector<OutputTarget> gtfs_targets(const OutputOptions& o) {
                              "directory; got '" +
                                  dir + "'");
     }
-    const std::string problem = data::output_target_problem(std::filesystem::path(dir) / "x");
-    if (problem.find("is not writable") != std::string::npos) {
-      throw data::InputError(
-          "command line", 0, "--gtfs",
-          "a directory that can be made; directory '" + parent.string() + "' is not writable");
+    // The new directory is an entry of its parent, as a file would be: the parent must be
+    // writable.
+    if (const std::string problem = data::output_target_problem(dir); !problem.empty()) {
+      throw data::InputError("command line", 0, "--gtfs",
+                             "a directory that can be made; " + problem);
     }
     new_directory = true;
   }

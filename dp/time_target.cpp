@@ -12,10 +12,14 @@ namespace ecorail::dp {
 
 namespace {
 std::string long_message(double requested, double maximum) {
-  return format_text(
-      "running time %.2f s is above the longest running time of %.2f s this engine solves "
-      "reliably for this section on this grid",
-      requested, maximum);
+  // A request far beyond any running time (1e308 s) in short scientific form.
+  return format_text(requested < 1e7 ? "running time %.2f s is above the longest running time of "
+                                       "%.2f s this engine solves reliably for this section on "
+                                       "this grid"
+                                     : "running time %.6g s is above the longest running time of "
+                                       "%.2f s this engine solves reliably for this section on "
+                                       "this grid",
+                     requested, maximum);
 }
 
 std::string infeasible_message(double requested, double minimum) {

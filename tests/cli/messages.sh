@@ -2,8 +2,9 @@
 # Command-line errors name the one flag at fault and say "expected" once: integers are read
 # strictly (a seed of 2^64 is refused, not clamped to 2^64 - 1; -1 for an unsigned flag, 0x10
 # and 1e3 for an integer are refused), a library option refused by its IsValid is reported on
-# the flag that set it, a ladder rung the engine cannot solve blames --lambda-ladder (not
-# --time), a missing station names --from or --to alone.
+# the flag that set it (not as "invalid options: t_min_s must ..."), a ladder rung the engine
+# cannot solve blames --lambda-ladder (not --time), a missing station names --from or --to
+# alone.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 
@@ -25,6 +26,8 @@ one_flag "--threads" solve --from A6 --to A7 --time 110 --threads 99999999999999
 one_flag "--lambda-ladder" policy --from A6 --to A7 --time 110 --lambda-ladder 0,1e308 --out p.bin
 one_flag "--braking" timetable evaluate --trains 2 --span 645 --separation --braking 11
 one_flag "--train-length" timetable evaluate --trains 2 --span 645 --separation --train-length 5000
+one_flag "--tmin" frontier --from A6 --to A7 --tmin -5
+one_flag "--min-regime-m" solve --from A6 --to A7 --time 110 --min-regime-m -1
 one_flag "--from" frontier --to A7
 one_flag "--to" policy --from A6 --time 110 --out p.bin
 
