@@ -43,23 +43,47 @@ namespace {
 
 constexpr double kMaxTrim_s = 1.0;
 
-// Where f, falling in x = log(lambda), crosses 0, by the engine's one root search
-// (dp/lambda_bracket.hpp), from x0 in steps of `step`: a value within tol is the root (the
-// search ends there). f may return +infinity ("too slow"). The caller keeps the run it wants
-// from its own evaluations.
+// Where f, falling in x = log(lambda), crosses 0 on [x_min, x_max]: steps from x0 (growing
+// steps, so a far root is bracketed within the small budgets of the price searches) until the
+// sign changes, then the engine's one root search narrows the bracket (dp::LambdaBracket,
+// regula falsi, Illinois). A value within tol is the root and ends the search. f may return
+// +infinity ("too slow"). The caller keeps the run it wants from its own evaluations.
 template <typename F>
-void falling_root(F f, double x0, double step, int budget, double tol) {
+void falling_root(F f, double x0, double step, double x_min, double x_max, int budget, double tol) {
+  int n = 0;
   bool found = false;
-  LambdaBracket bracket(
-      [&](double x) {
-        const double e = f(x);
-        if (std::abs(e) <= tol) {
-          found = true;
-          return 0.0;
-        }
-        return e;
-      },
-      x0, step, budget);
+  auto g = [&](double x) {
+    ++n;
+    const double e = f(x);
+    if (std::abs(e) <= tol) {
+      found = true;
+      return 0.0;
+    }
+    return e;
+  };
+  double xa = std::clamp(x0, x_min, x_max), fa = g(xa);
+  if (found) return;
+  double xb = xa, fb = fa;
+  if (fa > 0.0) {
+    while (fb > 0.0 && n < budget && xb < x_max) {
+      xa = xb, fa = fb;
+      xb = std::min(x_max, xb + step);
+      fb = g(xb);
+      if (found) return;
+      step *= 1.5;
+    }
+    if (fb > 0.0) return;
+  } else {
+    while (fa < 0.0 && n < budget && xa > x_min) {
+      xb = xa, fb = fa;
+      xa = std::max(x_min, xa - step);
+      fa = g(xa);
+      if (found) return;
+      step *= 1.5;
+    }
+    if (fa < 0.0) return;
+  }
+  LambdaBracket bracket(g, xa, fa, xb, fb, budget - n);
   bracket.narrow([&] { return found; }, 1e-9);
 }
 
@@ -253,7 +277,7 @@ class PartSolver {
       }
       return err;
     };
-    falling_root(f, x_after_guess_, 0.3, kInnerBudget, kArrivalTolerance_s);
+    falling_root(f, x_after_guess_, 0.3, 0.0, 30.0, kInnerBudget, kArrivalTolerance_s);
     if (!best.ok && floor_x <= 1e-9) {
       // Too fast even at the lowest price: the arrival does not bind (if it is not too early).
       const double t = floor_run.run.sim.running_time_s;
@@ -597,7 +621,8 @@ class PartSolver {
       }
       return err;
     };
-    falling_root(g, std::log(std::max(1.0, before_[m])), 0.3, kOuterBudget, passing_tolerance_s());
+    falling_root(g, std::log(std::max(1.0, before_[m])), 0.3, 0.0, 30.0, kOuterBudget,
+                 passing_tolerance_s());
     if (!best_ok) {
       notes_.push_back(format_text("the price search for %s found no run that meets it",
                                    point_name(p.index, windows_[p.index]).c_str()));
