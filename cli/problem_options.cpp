@@ -86,8 +86,12 @@ Problem load_problem(const ProblemOptions& o) {
   // (Once per run: a load without --from only looks up the line's stops.)
   for (const std::string* path : {&o.line_path, &o.train_path}) {
     if (o.from.empty() || path->empty() || !std::filesystem::is_regular_file(*path)) continue;
-    for (const auto& field : data::ttobench_unmodelled_fields(data::read_text_file(*path))) {
+    const std::string text = data::read_text_file(*path);
+    for (const auto& field : data::ttobench_unmodelled_fields(text)) {
       std::cerr << "ecorail: note: " << *path << ": " << field << "\n";
+    }
+    for (const auto& w : data::ttobench_metadata_warnings(text)) {
+      std::cerr << "ecorail: warning: " << *path << ": " << w << "\n";
     }
   }
   if (!o.from.empty()) {

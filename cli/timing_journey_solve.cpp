@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "cli/errors.hpp"
@@ -9,6 +10,7 @@
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
+#include "data/ttobench_io.hpp"
 #include "data/ttobench_journey.hpp"
 #include "dp/text_format.hpp"
 #include "dp/timing_journey.hpp"
@@ -39,6 +41,14 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
   check_output_targets(outputs);
   const data::TtobenchJourney journey =
       data::journey_from_ttobench(data::read_text_file(journey_path), journey_path);
+  // Metadata keys TTOBench does not define are kept and said (the track's and train's too: the
+  // whole-track load below names no stops, so load_problem does not say them).
+  for (const std::string* path : {&problem.line_path, &problem.train_path, &journey_path}) {
+    if (!std::filesystem::is_regular_file(*path)) continue;
+    for (const auto& w : data::ttobench_metadata_warnings(data::read_text_file(*path))) {
+      std::fprintf(stderr, "ecorail: warning: %s: %s\n", path->c_str(), w.c_str());
+    }
+  }
   dp::TimingJourneyOptions options;
   options.engine = engine_options(problem);
   std::string why;

@@ -22,11 +22,9 @@ TtobenchJourney journey_from_ttobench(const std::string& text, const std::string
   const json root = r.parse_root(text, ttobench::Kind::Journey,
                                  "a TTOBench journey (an object with \"timing points\")");
   r.check_keys(root, {"metadata", "timing points"}, "");
-  const json& meta = r.object(root, "metadata", "");
-  r.check_keys(
-      meta, {"id", "library version", "description", "created by", "license", "associated track"},
-      "metadata");
   TtobenchJourney j;
+  j.other_metadata = r.metadata(root, ttobench::kJourneyMetadataKeys);
+  const json& meta = r.object(root, "metadata", "");
   j.id = r.string(meta, "id", "metadata");
   j.track_id = r.string(meta, "associated track", "metadata");
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/timing_window.hpp"
@@ -19,6 +20,9 @@ struct TtobenchJourney {
   std::string id;
   std::string track_id;  // metadata "associated track"
   std::vector<TimingPoint> points;
+  // Metadata keys TTOBench does not define (key, JSON text), kept as free text; no solve reads
+  // them (data::ttobench_metadata_warnings says so).
+  std::vector<std::pair<std::string, std::string>> other_metadata;
 };
 
 TtobenchJourney journey_from_ttobench(const std::string& text, const std::string& file);

@@ -1,5 +1,6 @@
 #include "data/ttobench_json.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -170,6 +171,36 @@ void JsonReader::check_keys(const nlohmann::json& obj, const std::vector<std::st
                                 "); got an unknown key, refused rather than ignored");
     }
   }
+}
+
+const std::vector<std::string> kTrackMetadataKeys{
+    "id",      "library version",  "description",     "created by",
+    "license", "associated track", "associated train"};
+const std::vector<std::string> kTrainMetadataKeys{"id", "library version", "description",
+                                                  "created by", "license"};
+const std::vector<std::string> kJourneyMetadataKeys{
+    "id", "library version", "description", "created by", "license", "associated track"};
+
+std::vector<std::pair<std::string, std::string>> JsonReader::metadata(
+    const nlohmann::json& root, const std::vector<std::string>& known) const {
+  const nlohmann::json& meta = object(root, "metadata", "");
+  std::vector<std::pair<std::string, std::string>> other;
+  for (const auto& [key, value] : meta.items()) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      other.emplace_back(key, value.dump());
+    }
+  }
+  return other;
+}
+
+std::vector<std::string> metadata_warnings(
+    const std::vector<std::pair<std::string, std::string>>& other_metadata) {
+  std::vector<std::string> out;
+  for (const auto& [key, text] : other_metadata) {
+    out.push_back("'metadata." + key +
+                  "' is not a TTOBench metadata key: kept as free text, no solve reads it");
+  }
+  return out;
 }
 
 double JsonReader::unit_factor(const nlohmann::json& node, const std::string& path,

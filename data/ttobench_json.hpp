@@ -45,6 +45,11 @@ class JsonReader {
   // Refuses any key outside `allowed` (named with its path), so nothing is silently dropped.
   void check_keys(const nlohmann::json& obj, const std::vector<std::string>& allowed,
                   const std::string& path) const;
+  // The `metadata` object of root (required): free text that no solve reads. Its keys outside
+  // `known` are kept (key and JSON text, in file order) and reported by metadata_warnings, not
+  // refused, so files written by other tools are read; its "id" must be a string.
+  std::vector<std::pair<std::string, std::string>> metadata(
+      const nlohmann::json& root, const std::vector<std::string>& known) const;
   // {"unit": u, "value": x}: x converted to SI with the factor of u in units.
   double quantity(const nlohmann::json& parent, const std::string& key,
                   const UnitTable& units) const;
@@ -56,6 +61,16 @@ class JsonReader {
  private:
   std::string file_;
 };
+
+// The metadata keys TTOBench defines for each kind of file (others are kept and reported).
+extern const std::vector<std::string> kTrackMetadataKeys;
+extern const std::vector<std::string> kTrainMetadataKeys;
+extern const std::vector<std::string> kJourneyMetadataKeys;
+
+// One warning per metadata key outside `known` ("metadata.note: not a TTOBench metadata key;
+// kept as free text, no solve reads it"); empty when there are none.
+std::vector<std::string> metadata_warnings(
+    const std::vector<std::pair<std::string, std::string>>& other_metadata);
 
 // A JSON path: parent + "." + key (or key alone at the top), and parent + "[i]".
 std::string join(const std::string& parent, const std::string& key);

@@ -16,14 +16,11 @@ using ttobench::index;
 using ttobench::join;
 using ttobench::JsonReader;
 
-const std::vector<std::string> kMetadataKeys{
-    "id",      "library version",  "description",     "created by",
-    "license", "associated track", "associated train"};
-
-void check_metadata(const JsonReader& r, const json& root) {
-  const json& meta = r.object(root, "metadata", "");
-  r.check_keys(meta, kMetadataKeys, "metadata");
-  r.string(meta, "id", "metadata");
+std::vector<std::pair<std::string, std::string>> read_metadata(const JsonReader& r,
+                                                               const json& root) {
+  auto other = r.metadata(root, ttobench::kTrackMetadataKeys);
+  r.string(r.object(root, "metadata", ""), "id", "metadata");
+  return other;
 }
 
 // A table {"units": {col: unit}, "values": [[...], ...]}: the rows converted to SI column by
@@ -118,7 +115,7 @@ Line line_from_ttobench(const std::string& text, const std::string& file) {
                {"metadata", "altitude", "stops", "stop names", "speed limits", "gradients",
                 "curvatures", "tunnels", "ETCS braking data"},
                "");
-  check_metadata(r, root);
+  read_metadata(r, root);
   if (root.contains("altitude")) r.quantity(root, "altitude", ttobench::kLength);
 
   Line line;
@@ -243,6 +240,23 @@ Line line_from_ttobench(const std::string& text, const std::string& file) {
     }
   }
   return line;
+}
+
+std::vector<std::string> ttobench_metadata_warnings(const std::string& text) {
+  const ttobench::Kind kind = ttobench::detect(text);
+  if (kind != ttobench::Kind::Track && kind != ttobench::Kind::Train &&
+      kind != ttobench::Kind::Journey) {
+    return {};
+  }
+  const json root = json::parse(text, nullptr, false);
+  if (!root.is_object() || !root.contains("metadata") || !root.at("metadata").is_object()) {
+    return {};
+  }
+  const std::vector<std::string>& known =
+      kind == ttobench::Kind::Track   ? ttobench::kTrackMetadataKeys
+      : kind == ttobench::Kind::Train ? ttobench::kTrainMetadataKeys
+                                      : ttobench::kJourneyMetadataKeys;
+  return ttobench::metadata_warnings(JsonReader("").metadata(root, known));
 }
 
 std::vector<std::string> ttobench_unmodelled_fields(const std::string& text) {

@@ -74,8 +74,8 @@ physics::Train train_from_ttobench(const std::string& text, const std::string& f
                 "auxiliary power",
                 "ETCS braking data"},
                "");
+  r.metadata(root, ttobench::kTrainMetadataKeys);  // other keys: ttobench_metadata_warnings
   const json& meta = r.object(root, "metadata", "");
-  r.check_keys(meta, {"id", "library version", "description", "created by", "license"}, "metadata");
 
   physics::Train t;
   t.name = r.string(meta, "id", "metadata");

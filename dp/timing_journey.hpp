@@ -109,7 +109,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
                                            const TimingJourneyOptions& options,
                                            const std::string& id = "");
 
-// The stretch [from_m, to_m] of a route as a route of its own (positions from 0).
-physics::Route slice_route(const physics::Route& route, double from_m, double to_m);
+// The stretch [from_m, to_m] of a route as a route of its own: physics/route.hpp.
+using physics::slice_route;
 
 }  // namespace ecorail::dp

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace ecorail::physics {
@@ -48,6 +49,29 @@ std::vector<double> Route::change_points_m() const {
   std::vector<double> points;
   for (std::size_t i = 1; i < segments_.size(); ++i) points.push_back(segments_[i].start_m);
   return points;
+}
+
+Route slice_route(const Route& route, double from_m, double to_m) {
+  std::vector<RouteSegment> out;
+  for (const auto& seg : route.segments()) {
+    const double a = std::max(seg.start_m, from_m), b = std::min(seg.end_m, to_m);
+    if (b - a <= 1e-9) continue;
+    RouteSegment s = seg;
+    s.start_m = a - from_m;
+    s.end_m = b - from_m;
+    out.push_back(s);
+  }
+  if (!out.empty()) {
+    out.front().start_m = 0.0;
+    out.back().end_m = to_m - from_m;
+  }
+  const int direction = route.km_post_m(1.0) >= route.km_post_m(0.0) ? 1 : -1;
+  auto name = [](double m) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f m", m);
+    return std::string(text);
+  };
+  return Route(std::move(out), route.km_post_m(from_m), direction, name(from_m), name(to_m));
 }
 
 }  // namespace ecorail::physics

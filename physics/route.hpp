@@ -65,4 +65,9 @@ class Route {
   std::string from_, to_;
 };
 
+// The stretch [from_m, to_m] of route as a route of its own (positions from 0, kilometre posts
+// and direction kept, its ends named by their positions in route, "1500.0 m"): a journey's
+// part between two timing points.
+Route slice_route(const Route& route, double from_m, double to_m);
+
 }  // namespace ecorail::physics

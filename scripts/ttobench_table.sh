@@ -1,76 +1,114 @@
 #!/usr/bin/env bash
-# Runs every TTOBench track with its matching train at the minimum running time +10 % and +30 %
-# and prints a Markdown table: distance, minimum time, traction energy, solve wall time.
-# A track with several stops runs as one journey S0 -> S_last stopping at every stop, its
-# running time split optimally (one time price); its minimum time is the sum of the sections'.
+# Every TTOBench instance run by ecorail, as one Markdown table on stdout: each track with each
+# train that can run it (at the track's minimum running time +10 % and +30 %), and each journey
+# (TTOBench's own and the variants in data/ttobench/) with its train: traction and net energy,
+# running time, whether every window (or the running time) is met, and the wall time of the
+# `solve` command. A track with more than two stops runs as one journey S0 -> S_last stopping at
+# every stop, its running time split optimally (one time price); its minimum time is the sum of
+# the sections' flat-out times. A pair the program refuses (e.g. a tunnel track and a train
+# without tunnel drag data) is a row saying so, as is a journey whose windows no run can meet.
 #
 #   scripts/ttobench_table.sh build/ecorail [TTOBENCH_DIR] [extra solver flags...]
 #   scripts/ttobench_table.sh build/ecorail ../shared/data/ttobench --ds 10 --dv 0.5
 #
-# Track -> train (TTOBench pairs none; the choice is ours, docs/ttobench.md): the 00_* variants
-# of the Dutch reference line run the NL VIRM6 intercity, the tunnel variant the FLIRT (the
-# only train with tunnel drag data), St. Gallen-Wil and Stadelhofen-Altstetten the SBB KISS,
-# Fribourg-Bern and Vasteras-Kolback the FLIRT, the Beijing line the Beijing subway train.
+# Environment: TRAINS="A B" limits the trains (file names without .json, default: all of
+# TTOBENCH_DIR/trains), TRACKS="x y" the tracks, JOURNEYS=0 leaves the journeys out, TRACK_RUNS=0
+# the track rows.
 set -euo pipefail
 bin=${1:?usage: ttobench_table.sh ECORAIL [TTOBENCH_DIR] [flags...]}
 dir=${2:-$(dirname "$0")/../../shared/data/ttobench}
-shift $(( $# >= 2 ? 2 : 1 ))
+shift $(($# >= 2 ? 2 : 1))
 flags=("$@")
+repo=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-train_for() {
-  case "$1" in
-    00_reference_with_tunnels) echo CH_Stadler_FLIRT_TPF ;;
-    00_*) echo NL_Intercity_VIRM6 ;;
-    CH_StGallen_Wil | CH_Stadelhofen_Altstetten) echo CH_Stadler_KISS_SBB ;;
-    CH_Fribourg_Bern | SE_Vasteras_Kolback) echo CH_Stadler_FLIRT_TPF ;;
-    CN_*) echo CN_Beijing_Subway ;;
-    *) echo "" ;;
-  esac
-}
+trains=${TRAINS:-$(for f in "$dir"/trains/*.json; do basename "$f" .json; done)}
+tracks=${TRACKS:-$(for f in "$dir"/tracks/*.json; do basename "$f" .json; done)}
 
 stops_of() {
   python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["stops"]["values"]))' "$1"
 }
-
-echo "| track | train | stops | distance m | min time s | +10 %: energy kJ | solve s | +30 %: energy kJ | solve s |"
-echo "|---|---|---|---|---|---|---|---|---|"
-for track in "$dir"/tracks/*.json; do
-  id=$(basename "$track" .json)
-  train=$(train_for "$id")
-  [ -n "$train" ] || { echo "| $id | (no train) | | | | | | | |"; continue; }
-  n=$(stops_of "$track")
-  last=$((n - 1))
-  common=(--line "$track" --train "$dir/trains/$train.json" "${flags[@]}")
-  tmin=0
-  for ((i = 0; i < last; i++)); do
-    "$bin" min-time "${common[@]}" --from "S$i" --to "S$((i + 1))" --json "$tmp/min_$i.json" \
-      >/dev/null 2>&1
-  done
-  tmin=$(python3 -c 'import json,sys; print(sum(json.load(open(f))["min_running_time_s"] for f in sys.argv[1:]))' "$tmp"/min_*.json)
-  row="| $id | $train | $n |"
-  dist=""
-  for pct in 10 30; do
-    t=$(python3 -c "print(round($tmin * (1 + $pct / 100), 3))")
-    start=$(date +%s.%N)
-    if "$bin" solve "${common[@]}" --from S0 --to "S$last" --time "$t" --dwell 0 \
-      --json "$tmp/run_$pct.json" >/dev/null 2>"$tmp/err_$pct.txt"; then
-      wall=$(python3 -c "import time; print(f'{time.time() - $start:.1f}')")
-      read -r d e < <(python3 - "$tmp/run_$pct.json" <<'PY'
+now() { date +%s.%N; }
+since() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$1" "$(now)"; }
+# The first line of an error, shortened for a table cell (pipes escaped).
+why() { grep -m1 -E "error|ecorail:" "$1" | sed 's/^ecorail: //; s/|/\\|/g' | cut -c1-140; }
+# traction kJ | net kJ | running time s | windows met, from a solve's JSON report.
+figures() {
+  python3 - "$1" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
-d = j.get("distance_m") or sum(s["distance_m"] for s in j["sections"])
-print(f'{d:.1f} {j["traction_energy_kJ"]:.1f}')
+net = j.get("net_energy_kJ")
+if net is None and j.get("sections"):
+    net = sum(s["net_energy_kJ"] for s in j["sections"])
+met = j.get("windows_met")
+met = "-" if met is None else ("yes" if met else "NO")
+print(f'{j["traction_energy_kJ"]:.1f} | {"-" if net is None else f"{net:.1f}"} | '
+      f'{j["running_time_s"]:.3f} | {met}')
 PY
-)
-      dist=$d
-      row="$row@ $e | $wall |"
+}
+
+echo "| track | train | run | traction kJ | net kJ | running time s | windows met | solve wall s |"
+echo "|---|---|---|---|---|---|---|---|"
+
+if [ "${TRACK_RUNS:-1}" != 0 ]; then
+  for id in $tracks; do
+    track="$dir/tracks/$id.json"
+    n=$(stops_of "$track")
+    last=$((n - 1))
+    for train in $trains; do
+      common=(--line "$track" --train "$dir/trains/$train.json" "${flags[@]}")
+      ok=1
+      rm -f "$tmp"/min_*.json
+      for ((i = 0; i < last; i++)); do
+        if ! "$bin" min-time "${common[@]}" --from "S$i" --to "S$((i + 1))" \
+          --json "$tmp/min_$i.json" >/dev/null 2>"$tmp/err.txt"; then
+          echo "| $id | $train | cannot run: $(why "$tmp/err.txt") | | | | | |"
+          ok=0
+          break
+        fi
+      done
+      [ "$ok" = 1 ] || continue
+      tmin=$(python3 -c 'import json,sys; print(sum(json.load(open(f))["min_running_time_s"] for f in sys.argv[1:]))' "$tmp"/min_*.json)
+      for pct in 10 30; do
+        t=$(python3 -c "print(round($tmin * (1 + $pct / 100), 3))")
+        run="+$pct % ($t s)"
+        start=$(now)
+        if "$bin" solve "${common[@]}" --from S0 --to "S$last" --time "$t" --dwell 0 --quiet \
+          --json "$tmp/run.json" >/dev/null 2>"$tmp/err.txt"; then
+          echo "| $id | $train | $run | $(figures "$tmp/run.json") | $(since "$start") |"
+        else
+          echo "| $id | $train | $run: failed ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
+        fi
+      done
+    done
+  done
+fi
+
+# The journey's train: the pairing of docs/ttobench.md, and the GPOPS comparison's own train.
+journey_train() {
+  case "$1" in
+    *gpops*) echo "$repo/data/ttobench/NL_Intercity_VIRM6_gpops.json" ;;
+    CH_StGallen_Wil*) echo "$dir/trains/CH_Stadler_KISS_SBB.json" ;;
+    *) echo "" ;;
+  esac
+}
+
+if [ "${JOURNEYS:-1}" != 0 ]; then
+  for journey in "$dir"/journeys/*.json "$repo"/data/ttobench/*[Jj]ourney*.json; do
+    [ -f "$journey" ] || continue
+    jid=$(basename "$journey" .json)
+    track_id=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["metadata"]["associated track"])' "$journey")
+    train=$(journey_train "$jid")
+    [ -n "$train" ] || { echo "| $track_id | (no train) | journey $jid | | | | | |"; continue; }
+    objective=()
+    case "$jid" in *gpops*) objective=(--objective net) ;; esac
+    start=$(now)
+    if "$bin" solve --line "$dir/tracks/$track_id.json" --train "$train" --journey "$journey" \
+      "${objective[@]}" "${flags[@]}" --quiet --json "$tmp/run.json" >/dev/null 2>"$tmp/err.txt"; then
+      echo "| $track_id | $(basename "$train" .json) | journey $jid | $(figures "$tmp/run.json") | $(since "$start") |"
     else
-      row="$row@ failed: $(head -c 120 "$tmp/err_$pct.txt") | |"
+      echo "| $track_id | $(basename "$train" .json) | journey $jid: refused ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
     fi
   done
-  row=${row/@/ $dist | $(printf '%.3f' "$tmin") |}
-  echo "${row//@/}"
-  rm -f "$tmp"/min_*.json
-done
+fi

@@ -49,6 +49,16 @@ expect_error "a TTOBench train" min-time --line train.data --train train.data --
 echo '{"stops": [' > broken.json
 expect_error "syntax error" min-time --line broken.json --train train.data --from S0 --to S1
 
+# Metadata is free text: a key TTOBench does not define there (a file from another tool) is
+# read past with a warning naming it; the same key where a solve reads is refused (exit 2).
+sed 's/"library version"/"note": "from another tool", "library version"/' track.data > noted.json
+"$ecorail" min-time --line noted.json --train train.data --from S0 --to S1 > /dev/null 2> err.txt ||
+  { echo "FAIL: a metadata note refused"; cat err.txt; fail=1; }
+grep -q "warning: noted.json: 'metadata.note' is not a TTOBench metadata key" err.txt ||
+  { echo "FAIL: no warning for the metadata note"; cat err.txt; fail=1; }
+sed 's/^{/{"note": "x",/' track.data > noted_top.json
+expect_error "noted_top.json: field 'note'" min-time --line noted_top.json --train train.data --from S0 --to S1
+
 # The shared TTOBench copy, when present: ETCS data is said, not dropped in silence.
 tto="$src/../shared/data/ttobench"
 if [ -d "$tto" ]; then

@@ -179,6 +179,33 @@ TEST(TtobenchTrack, CurvaturesAndTunnels) {
   EXPECT_DOUBLE_EQ(line.tunnels[0].cross_section_m2, 40.0);
 }
 
+// Metadata is free text: keys TTOBench does not define there are read past and reported (one
+// warning each); the same key at the top level of a track or train (where a solve reads) is
+// refused with its path.
+TEST(TtobenchMetadata, UnknownKeysAreReportedNotRefused) {
+  auto with_note = [](std::string text) {
+    text.replace(text.find("\"library version\""), 0, "\"note\": {\"any\": [1, 2]}, ");
+    return text;
+  };
+  const std::string train = with_note(train_json());
+  const std::string track = with_note(track_json());
+  EXPECT_NO_THROW(train_from_ttobench(train, "f.json"));
+  EXPECT_NO_THROW(line_from_ttobench(track, "f.json"));
+  for (const std::string& text : {train, track}) {
+    const std::vector<std::string> w = ttobench_metadata_warnings(text);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("'metadata.note'"), std::string::npos) << w[0];
+  }
+  EXPECT_TRUE(ttobench_metadata_warnings(train_json()).empty());
+  EXPECT_TRUE(ttobench_metadata_warnings(track_json()).empty());
+  // The same train with or without the note is the same model.
+  const physics::Train a = train_from_ttobench(train, "f.json");
+  const physics::Train b = train_from_ttobench(train_json(), "f.json");
+  EXPECT_EQ(a.mass_kg, b.mass_kg);
+  EXPECT_EQ(a.name, b.name);
+  expect_path([&] { line_from_ttobench(track_json(R"J(, "note": "x")J"), "f.json"); }, "note");
+}
+
 TEST(TtobenchMalformed, EachErrorNamesItsJsonPath) {
   const auto train = [](const std::string& text) { train_from_ttobench(text, "f.json"); };
   const auto track = [](const std::string& text) { line_from_ttobench(text, "f.json"); };

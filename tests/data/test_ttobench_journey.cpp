@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "data/input_error.hpp"
+#include "data/ttobench_io.hpp"
 #include "data/ttobench_journey.hpp"
 
 namespace ecorail::data {
@@ -57,6 +58,33 @@ TEST(TtobenchJourney, MalformedJourneysNameTheirPath) {
             "timing points.values[1][0]");
   EXPECT_EQ(field_of(journey("[[0, 0, 0, 0, 0], [100, 50, 60, 30, 20]]")),
             "timing points.values[1][4]");
+}
+
+// Metadata is free text: a key TTOBench does not define there (a file from another tool) is
+// kept and reported, never refused; the same key where a solve reads (the timing points) is.
+TEST(TtobenchJourney, UnknownMetadataIsKeptAndReportedButUnknownDataRefused) {
+  std::string text = journey("[[0, 0, 0, 0, 0], [1000, null, 90, 0, 0]]");
+  text.replace(text.find("\"associated track\""), 0, "\"note\": \"from tool X\", \"rev\": 3, ");
+  const TtobenchJourney j = journey_from_ttobench(text, "j.json");
+  EXPECT_EQ(j.id, "T_Journey_01");
+  ASSERT_EQ(j.other_metadata.size(), 2u);
+  EXPECT_EQ(j.other_metadata[0].first, "note");
+  EXPECT_EQ(j.other_metadata[0].second, "\"from tool X\"");
+  EXPECT_EQ(j.other_metadata[1].first, "rev");
+  EXPECT_EQ(j.other_metadata[1].second, "3");
+  const std::vector<std::string> warnings = ttobench_metadata_warnings(text);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("'metadata.note'"), std::string::npos) << warnings[0];
+  EXPECT_TRUE(
+      ttobench_metadata_warnings(journey("[[0, 0, 0, 0, 0], [1000, null, 90, 0, 0]]")).empty());
+  // Where a solve reads, an unknown key is still refused with its path.
+  std::string data = journey("[[0, 0, 0, 0, 0], [1000, null, 90, 0, 0]]");
+  data.replace(data.find("\"values\""), 0, "\"note\": 1, ");
+  EXPECT_EQ(field_of(data), "timing points.note");
+  // metadata.id must still be a string.
+  std::string bad_id = journey("[[0, 0, 0, 0, 0], [1000, null, 90, 0, 0]]");
+  bad_id.replace(bad_id.find("\"T_Journey_01\""), 14, "7");
+  EXPECT_EQ(field_of(bad_id), "metadata.id");
 }
 
 TEST(TtobenchJourney, TheStGallenWilJourney) {

@@ -358,6 +358,35 @@ TEST(TimingJourney, ARunEndingMovingEndsInsideItsBandAndIsNoDearerThanSimpleRuns
   EXPECT_LE(energy[1], best_simple * (1.0 + 1e-3)) << energy[1] << " vs " << best_simple;
 }
 
+// Windows of zero width (the GPOPS comparison's journey on a short track): start at exactly
+// 1 m/s at 0 s, end at exactly 1 m/s at 240 s. Met exactly (time within 1 ms, speed within
+// 0.01 km/h) on the re-simulation, and no dearer than 0.2 % above the optimum of the wider
+// window that contains it (arrival in [200, 240] s at 1 m/s), which can only be cheaper.
+TEST(TimingJourney, ZeroWidthWindowsAtAMovingStartAndEndAreMetExactly) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TimingJourneyOptions options = coarse();
+  const std::vector<TimingWindow> exact_w = {{0.0, 0.0, 0.0, 1.0, 1.0},
+                                             {3000.0, 240.0, 240.0, 1.0, 1.0}};
+  const std::vector<TimingWindow> wide_w = {{0.0, 0.0, 0.0, 1.0, 1.0},
+                                            {3000.0, 200.0, 240.0, 1.0, 1.0}};
+  const TimingJourneySolution exact = solve_timing_journey(train, track, exact_w, options);
+  const TimingJourneySolution wide = solve_timing_journey(train, track, wide_w, options);
+  ASSERT_TRUE(exact.summary.IsSolutionUsable()) << exact.summary.FullReport();
+  ASSERT_TRUE(wide.summary.IsSolutionUsable()) << wide.summary.FullReport();
+  ASSERT_TRUE(exact.windows_met);
+  const auto& sim = exact.journey.sections.at(0).run.sim;
+  ASSERT_FALSE(sim.trace.empty());
+  EXPECT_DOUBLE_EQ(sim.trace.front().v_ms, 1.0);
+  EXPECT_NEAR(sim.running_time_s, 240.0, 1e-3);
+  EXPECT_NEAR(sim.end_speed_ms, 1.0, units::kmh_to_ms(0.01));
+  EXPECT_NEAR(exact.windows[1].time_s, 240.0, 1e-3);
+  EXPECT_NEAR(exact.windows[1].speed_ms, 1.0, units::kmh_to_ms(0.01));
+  const double e_exact = sim.energy.traction_work_J;
+  const double e_wide = wide.journey.sections.at(0).run.sim.energy.traction_work_J;
+  EXPECT_LE(e_exact, e_wide * (1.0 + 2e-3)) << e_exact << " vs " << e_wide;
+}
+
 TEST(TimingJourney, AStopSplitsTheJourneyIntoPartsWithTheirOwnTimes) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();

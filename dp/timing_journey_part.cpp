@@ -1,0 +1,730 @@
+#include "dp/timing_journey_part.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dp/lambda_bracket.hpp"
+#include "dp/regimes.hpp"
+#include "dp/text_format.hpp"
+#include "physics/units.hpp"
+
+namespace ecorail::dp::timing {
+
+Passing passing_at(const std::vector<physics::TracePoint>& trace, double s) {
+  if (trace.empty() || s > trace.back().s_m + 1e-6) return {};
+  const auto it =
+      std::lower_bound(trace.begin(), trace.end(), s,
+                       [](const physics::TracePoint& p, double x) { return p.s_m < x; });
+  if (it == trace.begin()) return {it->t_s, it->v_ms};
+  if (it == trace.end()) return {trace.back().t_s, trace.back().v_ms};
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double w = b.s_m > a.s_m ? (s - a.s_m) / (b.s_m - a.s_m) : 1.0;
+  return {a.t_s + w * (b.t_s - a.t_s), a.v_ms + w * (b.v_ms - a.v_ms)};
+}
+
+std::string point_name(int i, const TimingWindow& w) {
+  return format_text("timing point %d (%.1f m)", i + 1, w.position_m);
+}
+
+bool EndCheck::reaches_end(const physics::SimulationResult& sim) const {
+  if (!moving) return run_arrives(sim);
+  return !sim.stopped_early && !sim.trace.empty() &&
+         sim.trace.back().s_m >= sim.end_position_m - sim.stop_error_m - physics::kArrivalSlack_m;
+}
+
+bool EndCheck::operator()(const physics::SimulationResult& sim) const {
+  if (!moving) return run_arrives(sim);
+  return reaches_end(sim) && sim.end_speed_ms >= min_ms - tol_ms &&
+         sim.end_speed_ms <= max_ms + tol_ms;
+}
+
+namespace {
+
+constexpr double kMaxTrim_s = 1.0;
+
+// Where f, falling in x = log(lambda), crosses 0 on [x_min, x_max]: steps from x0 (growing
+// steps, so a far root is bracketed within the small budgets of the price searches) until the
+// sign changes, then the engine's one root search narrows the bracket (dp::LambdaBracket,
+// regula falsi, Illinois). A value within tol is the root and ends the search. f may return
+// +infinity ("too slow"). The caller keeps the run it wants from its own evaluations.
+template <typename F>
+void falling_root(F f, double x0, double step, double x_min, double x_max, int budget, double tol) {
+  int n = 0;
+  bool found = false;
+  auto g = [&](double x) {
+    ++n;
+    const double e = f(x);
+    if (std::abs(e) <= tol) {
+      found = true;
+      return 0.0;
+    }
+    return e;
+  };
+  double xa = std::clamp(x0, x_min, x_max), fa = g(xa);
+  if (found) return;
+  double xb = xa, fb = fa;
+  if (fa > 0.0) {
+    while (fb > 0.0 && n < budget && xb < x_max) {
+      xa = xb, fa = fb;
+      xb = std::min(x_max, xb + step);
+      fb = g(xb);
+      if (found) return;
+      step *= 1.5;
+    }
+    if (fb > 0.0) return;
+  } else {
+    while (fa < 0.0 && n < budget && xa > x_min) {
+      xb = xa, fb = fa;
+      xa = std::max(x_min, xa - step);
+      fa = g(xa);
+      if (found) return;
+      step *= 1.5;
+    }
+    if (fa < 0.0) return;
+  }
+  LambdaBracket bracket(g, xa, fa, xb, fb, budget - n);
+  bracket.narrow([&] { return found; }, 1e-9);
+}
+
+// Moves one switch point of run's program with lo_m < position < hi_m (the end of a traction
+// phase, or the onset of braking: later is faster for both) so that error(sim) (a time minus
+// its target, falling as the switch moves later) is within tol_s; the first candidate that
+// brackets the root is bisected. Switches outside (lo_m, hi_m) do not move, so a trim after a
+// timing point leaves its passing time alone. A candidate must reach the end as `arrives` asks.
+// Returns the evaluations used.
+template <typename Error>
+int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun& run, double lo_m,
+                double hi_m, Error error, double tol_s, double max_trim_s = kMaxTrim_s) {
+  int used = 0;
+  // Only a last correction: a larger miss is the price search's to close, not a switch's.
+  const double miss = std::abs(error(run.sim));
+  if (miss <= tol_s || !(miss <= max_trim_s)) return used;
+  const physics::ControlProgram program = run.program;
+  const double length = engine.route().length_m();
+
+  for (std::size_t k = 1; k < program.size(); ++k) {
+    const bool traction_end = program[k - 1].control == physics::Control::MaxTraction;
+    const bool brake_onset = program[k].control == physics::Control::MaxBrake;
+    if (!(traction_end || brake_onset)) continue;
+    if (!(program[k].from_m > lo_m && program[k].from_m < hi_m)) continue;
+    double a = std::max(program[k - 1].from_m, lo_m) + 1e-6;
+    double b = std::min(k + 1 < program.size() ? program[k + 1].from_m : length, hi_m) - 1e-6;
+    if (!(b > a)) continue;
+    auto at = [&](double x, physics::ControlProgram* p_out, physics::SimulationResult* s_out) {
+      physics::ControlProgram p = program;
+      p[k].from_m = x;
+      // (Resumed from the run's own re-simulation where the programs agree: bit for bit a
+      // full run, without re-integrating the steps before the switch.)
+      physics::SimulationResult sim = engine.resimulate(p, run.start, run.sim);
+      ++used;
+      const double e = arrives(sim) ? error(sim) : kInf;
+      if (p_out) *p_out = std::move(p);
+      if (s_out) *s_out = std::move(sim);
+      return e;
+    };
+    double fa = at(a, nullptr, nullptr), fb = at(b, nullptr, nullptr);
+    if (!(fa >= 0.0 && fb <= 0.0) || !finite(fb)) continue;
+    for (int it = 0; it < 40; ++it) {
+      const double m = 0.5 * (a + b);
+      physics::ControlProgram p;
+      physics::SimulationResult sim;
+      const double fm = at(m, &p, &sim);
+      if (std::abs(fm) <= tol_s) {
+        run.program = std::move(p);
+        run.sim = std::move(sim);
+        run.cost_J = engine.energy_cost_J(run.sim);
+        return used;
+      }
+      (fm > 0.0 ? a : b) = m;
+    }
+  }
+  return used;
+}
+
+// One part's search for its prices. First the plain running-time search for the latest
+// arrival (one price): if every passing window holds, that is the optimum (a non-binding
+// window changes nothing). Otherwise the most missed passing window binds at its bound, and
+// each binding point gets the price of the stretch that ends at it (from the binding point
+// before it, or the start); the stretch after the last binding point has lambda_after. The
+// outer search is on the price before a binding point for its passing time, the inner on
+// lambda_after for the arrival. With one binding point that is one root search; with several,
+// each price is searched for its own point's time in turn (the others held), cycling until
+// every binding point is within the search's tolerance (coordinate-wise; a price moves its own
+// point most, and the later points only by the same shift, which their own prices take back).
+// A window still missed joins the binding set and the search is repeated. The arrival is a
+// window too: when even the lowest price after the last binding point arrives before the
+// latest arrival, the arrival does not bind and that run is kept. Speed windows missed by the
+// run are added as speed bands at their stage, and the search is repeated with them.
+class PartSolver {
+ public:
+  PartSolver(const SectionEngine& engine, const StartState& start, const EndCheck& end,
+             double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
+             const std::vector<TimingWindow>& windows, const TimingJourneyOptions& options)
+      : engine_(engine),
+        start_(start),
+        end_(end),
+        target_s_(target_s),
+        earliest_arrival_s_(earliest_arrival_s),
+        points_(std::move(points)),
+        windows_(windows),
+        options_(options) {}
+
+  int evaluations() const { return evaluations_; }
+  const std::vector<PartPoint>& points() const { return points_; }
+  const std::vector<std::string>& notes() const { return notes_; }
+  // The price of stretch k of the part (k = 0 .. points().size(): the stretch that ends at
+  // point k, or at the arrival).
+  double stretch_price(int k) const {
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      if (k <= binding_[m]) return before_[m];
+    }
+    return lambda_after_;
+  }
+  // With several binding points, one that the others already keep well inside its window
+  // (even its lowest price passes it early for a latest bound, late for an earliest one) does
+  // not bind after all: its window is inactive at the optimum and is not reported as binding.
+  bool inactive(std::size_t m) const { return m < inactive_.size() && inactive_[m]; }
+  void mark_inactive(const LambdaRun& run) {
+    inactive_.assign(binding_.size(), false);
+    if (binding_.size() < 2) return;
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      const PartPoint& p = points_[binding_[m]];
+      const double t = passing_at(run.sim.trace, p.s_m).t_s;
+      const double margin = 2.0 * kInside_s + options_.time_tolerance_s;
+      inactive_[m] = finite(t) && t > p.earliest_s + margin && t < p.latest_s - margin;
+    }
+  }
+
+  // How far inside its bound a binding passing point may pass (see search_target_s).
+  double binding_slack_s() const { return binding_.size() > 1 ? 2.0 * kInside_s : 0.0; }
+  // The sign of point k's multiplier: +1 its latest bound binds (the price before it is the
+  // higher), -1 its earliest, 0 it does not bind.
+  int binding_sign(int k) const {
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      if (binding_[m] != k || inactive(m)) continue;
+      const double next = m + 1 < binding_.size() ? before_[m + 1] : lambda_after_;
+      return before_[m] > next ? 1 : -1;
+    }
+    return 0;
+  }
+
+  // before: the price of the stretch ending at each binding point (empty: one price, after).
+  StagePrices prices(const std::vector<double>& before, double after) const {
+    StagePrices p;
+    const int transitions = engine_.grid().stage_count() - 1;
+    p.lambda_J_per_s.assign(transitions, after);
+    int from = 0;
+    for (std::size_t m = 0; m < before.size(); ++m) {
+      const int upto = std::clamp(points_[binding_[m]].stage, 0, transitions);
+      for (int i = from; i < upto; ++i) p.lambda_J_per_s[i] = before[m];
+      from = std::max(from, upto);
+    }
+    p.bands = bands_;
+    p.end_moving = end_.moving;
+    p.end_min_ms = end_.min_ms;
+    p.end_max_ms = end_.max_ms;
+    return p;
+  }
+
+  LambdaRun evaluate(const std::vector<double>& before, double after) {
+    ++evaluations_;
+    return engine_.run(prices(before, after), start_, engine_.options().resim_step_m);
+  }
+
+  // Signed miss of point k's time window: > 0 late, < 0 early, 0 inside.
+  double time_miss_s(const LambdaRun& run, const PartPoint& p) const {
+    const Passing at = passing_at(run.sim.trace, p.s_m);
+    if (!finite(at.t_s)) return kInf;
+    if (at.t_s > p.latest_s) return at.t_s - p.latest_s;
+    if (at.t_s < p.earliest_s) return at.t_s - p.earliest_s;
+    return 0.0;
+  }
+  bool speed_missed(const LambdaRun& run, const PartPoint& p) const {
+    const Passing at = passing_at(run.sim.trace, p.s_m);
+    const TimingWindow& w = windows_[p.index];
+    const double tol = units::kmh_to_ms(options_.speed_tolerance_kmh);
+    return !finite(at.v_ms) || at.v_ms < w.min_speed_ms - tol || at.v_ms > w.max_speed_ms + tol;
+  }
+  double arrival_error_s(const LambdaRun& run) const {
+    return end_(run.sim) ? run.sim.running_time_s - target_s_ : kInf;
+  }
+
+  // For fixed prices before the binding points (before empty: one price everywhere), the run
+  // whose arrival is the latest allowed, or the slowest-priced run if even that arrives
+  // earlier (the arrival then does not bind). ok: the arrival is within its window.
+  struct Inner {
+    LambdaRun run;
+    double x_after = 0.0;
+    bool ok = false;
+  };
+  Inner solve_arrival(const std::vector<double>& before) {
+    Inner best;
+    double best_abs = kInf;
+    Inner floor_run;
+    double floor_x = kInf;
+    auto f = [&](double x) {
+      const double after = std::exp(x);
+      LambdaRun run = evaluate(before, after);
+      const double err = arrival_error_s(run);
+      if (finite(err) && std::abs(err) < best_abs) {
+        best_abs = std::abs(err);
+        best = {run, x, best_abs <= kMaxTrim_s};
+      }
+      if (finite(err) && err < 0.0 && x < floor_x) {
+        floor_x = x;
+        floor_run = {std::move(run), x, false};
+      }
+      return err;
+    };
+    falling_root(f, x_after_guess_, 0.3, 0.0, 30.0, kInnerBudget, kArrivalTolerance_s);
+    if (!best.ok && floor_x <= 1e-9) {
+      // Too fast even at the lowest price: the arrival does not bind (if it is not too early).
+      const double t = floor_run.run.sim.running_time_s;
+      floor_run.ok = t >= earliest_arrival_s_ - options_.time_tolerance_s;
+      best = std::move(floor_run);
+      arrival_at_floor_ = true;
+    } else {
+      arrival_at_floor_ = false;
+    }
+    if (best.ok) x_after_guess_ = best.x_after;
+    return best;
+  }
+
+  // The last hundredths of the arrival by one switch point after from_m (when the arrival
+  // binds: the run is not early by more than the search's tolerance).
+  // If the run is still late by more than the window's tolerance (no switch after from_m can
+  // make it faster, e.g. it coasts from before the last binding point to the stop), one switch
+  // anywhere is moved: the binding points are then passed a little earlier, which their latest
+  // bounds allow (an earliest bound is checked on the re-simulation like every window).
+  void trim_arrival(LambdaRun& run, double from_m) {
+    auto arrival = [&](const physics::SimulationResult& sim) {
+      return sim.running_time_s - target_s_;
+    };
+    // (A run that ends moving is searched on the stage-priced sweep alone, whose running time
+    // is more ragged: its trim takes any miss within kMaxTrim_s.)
+    const double reach_s = end_.moving ? kMaxTrim_s : kArrivalTolerance_s;
+    if (run.sim.running_time_s > target_s_ - reach_s) {
+      evaluations_ += trim_switch(engine_, end_, run, from_m, engine_.route().length_m(), arrival,
+                                  kTrimTolerance_s);
+    }
+    if (from_m > 0.0 && arrival(run.sim) > options_.time_tolerance_s) {
+      evaluations_ += trim_switch(engine_, end_, run, 0.0, engine_.route().length_m(), arrival,
+                                  kTrimTolerance_s);
+    }
+  }
+
+  LambdaRun solve(bool* met) {
+    LambdaRun run;
+    bool ok = false;
+    if (!end_.moving) {
+      TimeSearchOptions search;
+      const TimeSearchResult plain = solve_for_time(engine_, target_s_, search, start_);
+      evaluations_ += plain.iterations;
+      run = plain.run;
+      ok = plain.converged;
+      lambda_after_ = run.lambda;
+      x_after_guess_ = std::log(std::max(1.0, run.lambda));
+    } else {
+      // A run that ends moving: the plain search ends at rest, so the one price is searched
+      // here, with the end's speed band (StagePrices::end_moving).
+      Inner in = solve_arrival({});
+      run = std::move(in.run);
+      ok = in.ok;
+      lambda_after_ = std::exp(in.x_after);
+      if (ok) trim_arrival(run, 0.0);
+    }
+    for (int round = 0; round < 2 + static_cast<int>(std::max<std::size_t>(1, binding_.size()));
+         ++round) {
+      // Speed windows the run misses become bands.
+      bool new_band = false;
+      for (const auto& p : points_) {
+        const TimingWindow& w = windows_[p.index];
+        const bool banded = std::any_of(bands_.begin(), bands_.end(),
+                                        [&](const SpeedBand& b) { return b.stage == p.stage; });
+        if (!banded && speed_missed(run, p) && p.stage > 0 &&
+            p.stage < engine_.grid().stage_count() - 1) {
+          bands_.push_back({p.stage, w.min_speed_ms, w.max_speed_ms});
+          new_band = true;
+        }
+      }
+      // The most missed time window.
+      int worst = -1;
+      double worst_miss = 0.5 * options_.time_tolerance_s;
+      for (std::size_t k = 0; k < points_.size(); ++k) {
+        const double m = std::abs(time_miss_s(run, points_[k]));
+        if (m > worst_miss) worst = static_cast<int>(k), worst_miss = m;
+      }
+      if (worst < 0 && !new_band) break;
+      if (worst < 0 && binding_.empty()) {
+        // Bands alone: one price, searched with them.
+        Inner in = solve_arrival({});
+        run = std::move(in.run);
+        ok = in.ok;
+        lambda_after_ = std::exp(in.x_after);
+        if (ok) trim_arrival(run, 0.0);
+        continue;
+      }
+      if (worst >= 0 && !add_binding(worst)) {
+        ok = false;
+        break;
+      }
+      // Each binding point binds at the bound its run misses (or the one it was given).
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        const PartPoint& p = points_[binding_[m]];
+        const double miss = time_miss_s(run, p);
+        if (miss != 0.0) bound_s_[m] = miss > 0.0 ? p.latest_s : p.earliest_s;
+      }
+      if (!meet_bindings(run)) {
+        ok = false;
+        break;
+      }
+      ok = true;
+      // The last hundredths by switch points (first-order neutral at the optimum): for each
+      // binding point in turn one between the binding point before it and it (later points
+      // shift with it and are trimmed next), then one after the last for the arrival.
+      double lo = 0.0;
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        const double s_k = points_[binding_[m]].s_m, bound = bound_s_[m];
+        if (binding_.size() == 1) {  // several: see search_target_s
+          evaluations_ += trim_switch(
+              engine_, end_, run, lo, s_k,
+              [&](const physics::SimulationResult& sim) {
+                return passing_at(sim.trace, s_k).t_s - bound;
+              },
+              kTrimTolerance_s);
+        }
+        lo = s_k;
+      }
+      trim_arrival(run, lo);
+    }
+    if (ok && binding_.size() == 1 && !end_.moving) close_gap(run);
+    mark_inactive(run);
+    if (ok) {
+      for (std::size_t m = 0; m < binding_.size(); ++m) {
+        if (inactive(m)) continue;
+        const PartPoint& p = points_[binding_[m]];
+        const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_[m]);
+        const double allowed =
+            binding_.size() == 1 ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
+        // (A run outside the window is reported as missing it, on the re-simulation.)
+        const double t = passing_at(run.sim.trace, p.s_m).t_s;
+        const bool inside = t >= p.earliest_s - options_.time_tolerance_s &&
+                            t <= p.latest_s + options_.time_tolerance_s;
+        if (off > allowed && inside) {
+          // Inside the window but not at the bound the unconstrained run missed: feasible, and
+          // possibly not the least energy (the prices could not be set closer on this grid).
+          notes_.push_back(format_text(
+              "the price search for %s ended %.2f s from its %s bound: every window can hold, "
+              "but the run may not be the least-energy one",
+              point_name(p.index, windows_[p.index]).c_str(), off,
+              bound_s_[m] == p.latest_s ? "latest" : "earliest"));
+        }
+        // A latest bound is held by a dearer second before the point, an earliest one by a
+        // cheaper one; the other sign means the window need not bind (a multiplier < 0).
+        const int sign = binding_sign(binding_[m]);
+        if (binding_.size() > 1 && (sign > 0) != (bound_s_[m] == p.latest_s)) {
+          notes_.push_back(format_text(
+              "%s binds with a multiplier of the wrong sign: every window holds, but the run "
+              "may not be the least-energy one",
+              point_name(p.index, windows_[p.index]).c_str()));
+        }
+      }
+    }
+    if (end_.moving && binding_.empty() && !arrival_at_floor_ && end_(run.sim) &&
+        run.sim.running_time_s < target_s_ - options_.time_tolerance_s &&
+        run.sim.running_time_s >= earliest_arrival_s_ - options_.time_tolerance_s) {
+      // The running time of a run that ends moving can jump by seconds between neighbouring
+      // prices (a slow approach to a low end speed): the search ends with a run inside the
+      // arrival window but short of its latest bound. Feasible (every window is checked on the
+      // re-simulation), possibly not the least energy.
+      ok = true;
+      notes_.push_back(format_text(
+          "the arrival search ended %.2f s before the latest arrival: every window can hold, but "
+          "the run may not be the least-energy one",
+          target_s_ - run.sim.running_time_s));
+    }
+    if (ok && end_.moving) meet_end_exactly(run);
+    *met = ok;
+    return run;
+  }
+
+ private:
+  // A run that ends moving, made to meet its end window exactly where the window asks for one
+  // speed (min = max, within kExactSpeed_ms) and its arrival binds (within kExactTime_s): the
+  // onset of the last braking phase is moved so the run ends at that speed (the end speed
+  // rises as braking starts later), then a switch is trimmed for the time, and again, as each
+  // moves the other a little (a switch near the end moves the time by milliseconds).
+  void meet_end_exactly(LambdaRun& run) {
+    const bool one_speed = end_.min_ms == end_.max_ms;
+    auto arrival = [&](const physics::SimulationResult& sim) {
+      return sim.running_time_s - target_s_;
+    };
+    for (int round = 0; round < 4; ++round) {
+      if (one_speed) fix_end_speed(run, end_.min_ms);
+      const double late = arrival(run.sim);
+      const bool binds = !arrival_at_floor_ && std::abs(late) <= kMaxTrim_s;
+      if (binds && std::abs(late) > kExactTime_s) {
+        evaluations_ += trim_switch(engine_, end_, run, 0.0, engine_.route().length_m(), arrival,
+                                    0.5 * kExactTime_s);
+      }
+      const bool time_ok = !binds || std::abs(arrival(run.sim)) <= kExactTime_s;
+      const bool speed_ok =
+          !one_speed || std::abs(run.sim.end_speed_ms - end_.min_ms) <= kExactSpeed_ms;
+      if (time_ok && speed_ok) return;
+    }
+  }
+
+  // Moves the onset of the program's last braking phase so the run ends at v_ms (bisection on
+  // the re-simulated end speed); the run is left as it is when no onset reaches it.
+  void fix_end_speed(LambdaRun& run, double v_ms) {
+    if (std::abs(run.sim.end_speed_ms - v_ms) <= 0.5 * kExactSpeed_ms) return;
+    const physics::ControlProgram program = run.program;
+    const double length = engine_.route().length_m();
+    std::size_t k = program.size();
+    while (k > 1 && program[k - 1].control != physics::Control::MaxBrake) --k;
+    if (k <= 1) return;
+    const std::size_t b = k - 1;  // the last braking phase starts at program[b].from_m
+    double lo = program[b - 1].from_m + 1e-6;
+    double hi = (b + 1 < program.size() ? program[b + 1].from_m : length) - 1e-6;
+    // End speed minus v_ms with the onset at x; -infinity for a run that stops short.
+    auto at = [&](double x, physics::ControlProgram* p_out, physics::SimulationResult* s_out) {
+      physics::ControlProgram p = program;
+      p[b].from_m = x;
+      physics::SimulationResult sim = engine_.resimulate(p, run.start, run.sim);
+      ++evaluations_;
+      const double e = end_.reaches_end(sim) ? sim.end_speed_ms - v_ms : -kInf;
+      if (p_out) *p_out = std::move(p);
+      if (s_out) *s_out = std::move(sim);
+      return e;
+    };
+    if (!(hi > lo) || !(at(lo, nullptr, nullptr) <= 0.0) || !(at(hi, nullptr, nullptr) >= 0.0)) {
+      return;
+    }
+    for (int it = 0; it < 60; ++it) {
+      const double m = 0.5 * (lo + hi);
+      physics::ControlProgram p;
+      physics::SimulationResult sim;
+      const double e = at(m, &p, &sim);
+      if (std::abs(e) <= 0.5 * kExactSpeed_ms) {
+        run.program = std::move(p);
+        run.sim = std::move(sim);
+        run.cost_J = engine_.energy_cost_J(run.sim);
+        return;
+      }
+      (e < 0.0 ? lo : hi) = m;
+    }
+  }
+
+  // One binding point whose search ended away from its bound (the passing time jumps between
+  // neighbouring prices, e.g. a stretch priced so low that a coast appears or vanishes, and
+  // the run is seconds inside its window or a few tenths outside it): one switch before the
+  // point is moved, however far, so the run passes at the bound, and the rest of the run from
+  // there is re-solved from the state it passes in for the time left (the plain search from a
+  // restart: the optimum of the rest, whatever came before). The stitched program is
+  // re-simulated from the start and kept when it reaches its stop at the latest arrival and
+  // passes the point at its bound, and either the run before missed the window or the
+  // stitched one costs less.
+  void close_gap(LambdaRun& run) {
+    const PartPoint& p = points_[binding_[0]];
+    const double bound = bound_s_[0];
+    const double s_k = p.s_m;
+    const double off = passing_at(run.sim.trace, s_k).t_s - bound;
+    if (!(std::abs(off) > options_.time_tolerance_s)) return;
+    LambdaRun trimmed = run;
+    evaluations_ += trim_switch(
+        engine_, end_, trimmed, 0.0, s_k,
+        [&](const physics::SimulationResult& sim) {
+          return passing_at(sim.trace, s_k).t_s - bound;
+        },
+        kTrimTolerance_s, std::abs(off) + kMaxTrim_s);
+    const Passing at = passing_at(trimmed.sim.trace, s_k);
+    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return;
+    TimeSearchResult rest;
+    try {
+      rest = solve_for_time(engine_, target_s_ - at.t_s, TimeSearchOptions{}, {s_k, at.v_ms});
+    } catch (const TimeRequestError&) {
+      return;  // the time left is outside what the rest can run
+    }
+    evaluations_ += rest.iterations;
+    if (!rest.converged) return;
+    physics::ControlProgram stitched;
+    for (const auto& step : trimmed.program) {
+      if (step.from_m < s_k) stitched.push_back(step);
+    }
+    for (const auto& step : rest.run.program) {
+      if (step.from_m >= s_k - 1e-9) stitched.push_back(step);
+    }
+    // The run as it is misses the window (early for an earliest bound, late for a latest one):
+    // any feasible stitched run replaces it; otherwise only a cheaper one.
+    const bool run_misses = off < 0.0 ? bound == p.earliest_s : bound == p.latest_s;
+    LambdaRun out = run;
+    out.program = simplify_program(stitched, 0.0);
+    out.sim = engine_.simulate(out.program, start_);
+    ++evaluations_;
+    out.cost_J = engine_.energy_cost_J(out.sim);
+    const Passing now = passing_at(out.sim.trace, s_k);
+    if (!end_(out.sim) || !(std::abs(out.sim.running_time_s - target_s_) <= kArrivalTolerance_s) ||
+        !(std::abs(now.t_s - bound) <= options_.time_tolerance_s) ||
+        !(run_misses || out.cost_J < run.cost_J)) {
+      return;
+    }
+    trim_arrival(out, s_k);
+    run = std::move(out);
+  }
+
+  // Adds points_[k] to the binding set (kept in order along the part), its price starting at
+  // the price its stretch has now, so the prices do not change. False (with a note) when the
+  // point shares its grid stage with a binding point (no price can part them).
+  bool add_binding(int k) {
+    if (std::find(binding_.begin(), binding_.end(), k) != binding_.end()) return true;
+    for (int b : binding_) {
+      if (points_[b].stage == points_[k].stage) {
+        notes_.push_back(format_text(
+            "%s and %s lie on one grid stage: their windows cannot both be priced (use a finer "
+            "--ds)",
+            point_name(points_[b].index, windows_[points_[b].index]).c_str(),
+            point_name(points_[k].index, windows_[points_[k].index]).c_str()));
+        return false;
+      }
+    }
+    const double price = stretch_price(k);
+    const auto at = std::lower_bound(binding_.begin(), binding_.end(), k) - binding_.begin();
+    binding_.insert(binding_.begin() + at, k);
+    before_.insert(before_.begin() + at, price);
+    bound_s_.insert(bound_s_.begin() + at, 0.0);
+    return true;
+  }
+
+  // The price before binding point m searched for its passing time, the others held; run and
+  // the prices are set to the best run found. False (with a note) when no run meets it.
+  bool search_price(std::size_t m, LambdaRun& run) {
+    const PartPoint& p = points_[binding_[m]];
+    const double bound = search_target_s(m);
+    LambdaRun best;
+    double best_abs = kInf;
+    bool best_ok = false;
+    double best_before = 0.0, best_after = 0.0;
+    std::vector<double> before = before_;
+    auto g = [&](double x) {
+      before[m] = std::exp(x);
+      Inner in = solve_arrival(before);
+      const Passing at = passing_at(in.run.sim.trace, p.s_m);
+      if (!in.ok || !finite(at.t_s)) return kInf;
+      const double err = at.t_s - bound;
+      if (std::abs(err) < best_abs) {
+        best_abs = std::abs(err);
+        best = std::move(in.run);
+        best_ok = true;
+        best_before = std::exp(x);
+        best_after = std::exp(in.x_after);
+      }
+      return err;
+    };
+    falling_root(g, std::log(std::max(1.0, before_[m])), 0.3, 0.0, 30.0, kOuterBudget,
+                 passing_tolerance_s());
+    if (!best_ok) {
+      notes_.push_back(format_text("the price search for %s found no run that meets it",
+                                   point_name(p.index, windows_[p.index]).c_str()));
+      return false;
+    }
+    run = std::move(best);
+    before_[m] = best_before;
+    lambda_after_ = best_after;
+    return true;
+  }
+
+  // With several binding points, no switch-point trim closes their last tenths (a switch
+  // between two of them changes the speed at the later one, and the run after it by seconds),
+  // so each is searched for a time kInside_s inside its bound, within kInside_s: it passes
+  // within 2 kInside_s of its bound, inside its window. One binding point: at its bound, within
+  // kPassingTolerance_s, and trimmed.
+  double search_target_s(std::size_t m) const {
+    if (binding_.size() == 1) return bound_s_[m];
+    const PartPoint& p = points_[binding_[m]];
+    return bound_s_[m] == p.latest_s ? bound_s_[m] - kInside_s : bound_s_[m] + kInside_s;
+  }
+  double passing_tolerance_s() const {
+    return binding_.size() == 1 ? kPassingTolerance_s : kInside_s;
+  }
+
+  // Every binding point's price searched for its time: one root search for one point; for
+  // several, cycles of one search per point (skipping those already within the tolerance)
+  // until all are within it.
+  bool meet_bindings(LambdaRun& run) {
+    const std::size_t k = binding_.size();
+    auto within = [&](std::size_t m) {
+      const double t = passing_at(run.sim.trace, points_[binding_[m]].s_m).t_s;
+      return finite(t) && std::abs(t - search_target_s(m)) <= passing_tolerance_s();
+    };
+    const int cycles = k > 1 ? kMaxCycles : 1;
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      for (std::size_t m = 0; m < k; ++m) {
+        if (k > 1 && within(m)) continue;
+        if (!search_price(m, run)) return false;
+      }
+      bool all = true;
+      for (std::size_t m = 0; m < k; ++m) all = all && within(m);
+      if (all) break;
+    }
+    return true;
+  }
+
+  // The price searches stop within a few tenths (the running time is ragged on a grid); the
+  // switch-point trims close the rest to kTrimTolerance_s.
+  static constexpr double kArrivalTolerance_s = 0.25;
+  static constexpr double kPassingTolerance_s = 0.25;
+  static constexpr double kTrimTolerance_s = 0.5 * kZeroWidthTime_s;
+  static constexpr int kInnerBudget = 40;
+  static constexpr int kOuterBudget = 25;
+  static constexpr int kMaxCycles = 6;  // of the searches for several binding points
+  static constexpr double kInside_s = 0.1;
+  // What "exactly" means for a window of zero width (docs/ttobench.md).
+  static constexpr double kExactTime_s = kZeroWidthTime_s;
+  static constexpr double kExactSpeed_ms = kZeroWidthSpeed_ms;
+
+  const SectionEngine& engine_;
+  StartState start_;
+  EndCheck end_;
+  double target_s_;
+  double earliest_arrival_s_;
+  std::vector<PartPoint> points_;
+  const std::vector<TimingWindow>& windows_;
+  const TimingJourneyOptions& options_;
+  std::vector<SpeedBand> bands_;
+  std::vector<std::string> notes_;
+  // The binding passing points (indices into points_, in order along the part), the bound each
+  // meets and the price of the stretch ending at it; lambda_after_ after the last of them.
+  bool arrival_at_floor_ = false;  // the last arrival search: even its lowest price is early
+  std::vector<int> binding_;
+  std::vector<bool> inactive_;  // per binding point (see inactive())
+  std::vector<double> bound_s_;
+  std::vector<double> before_;
+  double lambda_after_ = 0.0;
+  double x_after_guess_ = std::log(3e5);
+  int evaluations_ = 0;
+};
+
+}  // namespace
+
+PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
+                       double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
+                       const std::vector<TimingWindow>& windows,
+                       const TimingJourneyOptions& options) {
+  PartSolver solver(engine, start, end, target_s, earliest_arrival_s, std::move(points), windows,
+                    options);
+  PartOutcome out;
+  out.run = solver.solve(&out.met);
+  out.evaluations = solver.evaluations();
+  out.points = solver.points();
+  out.notes = solver.notes();
+  const int n = static_cast<int>(out.points.size());
+  for (int k = 0; k <= n; ++k) {
+    out.stretch_lambda_J_per_s.push_back(solver.stretch_price(k));
+    if (k < n) out.binding_sign.push_back(solver.binding_sign(k));
+  }
+  out.binding_slack_s = solver.binding_slack_s();
+  return out;
+}
+
+}  // namespace ecorail::dp::timing
