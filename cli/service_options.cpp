@@ -34,8 +34,10 @@ service::ServiceOptions service_options(const ServiceArgs& a) {
     o.mode = service::FollowerMode::Supervised;
   else if (a.follower == "reoptimise")
     o.mode = service::FollowerMode::Reoptimised;
+  else if (a.follower == "wait")
+    o.mode = service::FollowerMode::Wait;
   else
-    bad("--follower", "supervise or reoptimise; got '" + a.follower + "'");
+    bad("--follower", "supervise, reoptimise or wait; got '" + a.follower + "'");
   std::string why;
   if (!o.IsValid(&why)) bad("--train-length/--safety-margin/--braking", why);
   return o;
@@ -59,8 +61,9 @@ void add_service_options(CLI::App* cmd, ServiceArgs& a) {
                   "separation braking b (m/s^2; 0: max braking force at 10 km/h / mass)")
       ->capture_default_str();
   cmd->add_option("--follower", a.follower,
-                  "where the cap binds: reoptimise (energy-optimal under the cap) or supervise "
-                  "(planned control, braked)")
+                  "where waiting at the stop would make a follower late: reoptimise "
+                  "(energy-optimal under the cap), supervise (planned control, braked) or wait "
+                  "(wait, then the run for the time left)")
       ->capture_default_str();
   cmd->add_option("--profiles", a.profiles_csv,
                   "every train's speed-distance profile, long format (CSV)");

@@ -33,6 +33,12 @@
 
 namespace ecorail::recovery {
 
+inline service::ServiceOptions delay_service_options() {
+  service::ServiceOptions o;
+  o.mode = service::FollowerMode::Wait;
+  return o;
+}
+
 // The longest delay recover_delay takes (s): three hours; a longer one is a disruption (the
 // plan is recast), not a delay to recover.
 inline constexpr double kMaxDelay_s = 10800.0;
@@ -44,8 +50,9 @@ struct DelayRecoveryOptions {
   AllocationOptions allocation;
   bool check_followers = true;
   int max_followers = 5;  // followers simulated at most, behind the late train
-  // Separation (the cap) and how a held-up follower is driven (re-optimised under the cap).
-  service::ServiceOptions service;
+  // Separation (the cap) and how a held-up follower is driven: it waits at the stop, then runs
+  // the section faster for the time left (FollowerMode::Wait, delay_service_options()).
+  service::ServiceOptions service = delay_service_options();
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };

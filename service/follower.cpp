@@ -14,6 +14,8 @@ namespace {
 constexpr double kWaitMargin_s = 0.05;
 // A candidate that drives under the cap replaces the wait only when it arrives this much earlier.
 constexpr double kEarlierBy_s = 0.05;
+// Waits and faster runs tried in turn (each faster run may need a longer wait).
+constexpr int kFasterTries = 4;
 
 // The clock time from which the leader is at or beyond position_m for good: when it first
 // reaches it, or its arrival when the position lies at or past the end of its run (it then
@@ -118,19 +120,52 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
       physics::SimulationResult best;
       double best_wait = wait, best_arrival = start + wait + plan.runs[i].running_time_s;
       bool replaced = false;
-      auto consider = [&](physics::SimulationResult&& sim, double w) {
+      // Lateness first (no credit for arriving early), then energy.
+      double best_cost = ev.planned_cost_J;
+      const char* best_kind = "waited";
+      auto consider = [&](physics::SimulationResult&& sim, double w, const char* kind) {
         if (!arrives(sim)) return;
         const double arrival = start + w + sim.running_time_s;
-        if (arrival > best_arrival - kEarlierBy_s) return;
+        const double late = std::max(0.0, arrival - planned_arrival);
+        const double best_late = std::max(0.0, best_arrival - planned_arrival);
+        const double cost = engine.energy_cost_J(sim);
+        if (late > best_late - kEarlierBy_s && !(late <= best_late + 1e-9 && cost < best_cost))
+          return;
         if (section_distance_margin_m(leader, sim, section_start, start + w, b, room) <
             -kDistanceMarginTolerance_m)
           return;
         best = std::move(sim);
         best_wait = w;
         best_arrival = arrival;
+        best_cost = cost;
+        best_kind = kind;
         replaced = true;
       };
+      // Wait, then run the section faster than planned for the time left (the section
+      // library's energy-optimal run for that time, down to the flat-out run); a faster run may
+      // need a longer wait, so the two are iterated a few times.
       if (ev.waited_late_s > kEarlierBy_s) {
+        double w = wait;
+        for (int it = 0; it < kFasterTries; ++it) {
+          const double time_left = planned_arrival - start - w;
+          const bool flat_out = time_left <= library.min_time_s(i) + 0.02;
+          physics::SimulationResult faster =
+              flat_out ? library.min_time_run(i) : library.solve(i, time_left).search.run.sim;
+          const double w2 = clearance_wait_s(leader, faster, section_start, start, b, room);
+          const double w_round = std::ceil((w2 + kWaitMargin_s) * 100.0) / 100.0;
+          consider(std::move(faster), w_round, "waited, then faster");
+          if (flat_out || w2 <= w + 1e-9) break;
+          w = w_round;
+        }
+        ev.faster_tried = true;
+      }
+      // Leaving earlier and driving under the cap, when waiting still makes it late and an
+      // earlier arrival is possible at all: no run arrives before the flat-out time, nor before
+      // the leader is clear of the stop by the room (a follower at rest there needs gap >= 0).
+      const double earliest_arrival =
+          std::max(start + library.min_time_s(i), leader_clear_at(leader, section_end + room));
+      if (options.mode != FollowerMode::Wait && best_arrival - planned_arrival > kEarlierBy_s &&
+          best_arrival - earliest_arrival > std::max(kEarlierBy_s, options.redrive_gain_s)) {
         // The planned control braked by the supervisor, leaving now: reported in both modes
         // (what the cap alone would do), driven in the supervised one.
         physics::SimulationResult sup = drive_planned(engine, plan.programs[i], plan.runs[i], cap,
@@ -138,7 +173,7 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
         ev.supervised_cost_J = engine.energy_cost_J(sup);
         ev.supervised_late_s = start + sup.running_time_s - planned_arrival;
         if (options.mode == FollowerMode::Supervised) {
-          consider(std::move(sup), 0.0);
+          consider(std::move(sup), 0.0, "supervised");
         } else {
           dp::CappedSectionOptions capped = options.capped;
           capped.max_wait_s = std::min(capped.max_wait_s, wait);
@@ -149,7 +184,7 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
             ev.reoptimised_cost_J = r.summary.cost_J;
             ev.reoptimised_wait_s = r.wait_s;
             ev.reoptimised_late_s = start + r.wait_s + r.sim.running_time_s - planned_arrival;
-            consider(std::move(r.sim), r.wait_s);
+            consider(std::move(r.sim), r.wait_s, "reoptimised");
           }
         }
       }
@@ -157,8 +192,8 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
         run = std::move(best);
         wait = best_wait;
       }
-      ev.driven = replaced ? (options.mode == FollowerMode::Supervised ? "supervised" : "reoptimised")
-                           : "waited";
+      ev.driven = best_kind;
+      ev.station_wait_s = wait;
       ev.late_s = best_arrival - planned_arrival;
       if (events) events->push_back(ev);
       ++out.sections_redriven;

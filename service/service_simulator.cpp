@@ -122,6 +122,10 @@ bool ServiceOptions::IsValid(std::string* error) const {
     if (error) *error = "resim_step_m: expected (0, 1] m";
     return false;
   }
+  if (!(redrive_gain_s >= 0.0 && redrive_gain_s <= 3600.0)) {
+    if (error) *error = "redrive_gain_s: expected 0 to 3600 s";
+    return false;
+  }
   return true;
 }
 

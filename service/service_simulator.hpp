@@ -53,13 +53,21 @@ ServicePlan plan_from_programs(const dp::SectionLibrary& library,
                                std::vector<physics::ControlProgram> programs,
                                std::vector<double> dwells_s);
 
-enum class FollowerMode { Supervised, Reoptimised };
+// How a held-up follower drives a section where waiting at the stop would make it late:
+// Supervised: its planned control braked by the supervisor; Reoptimised: the capped DP; Wait:
+// it only waits at the stop and then runs the section library's run for the time left (no
+// drive under the cap: what the delay and Monte Carlo commands use, a DP costs seconds).
+enum class FollowerMode { Supervised, Reoptimised, Wait };
 
 struct ServiceOptions {
   SeparationOptions separation;
   FollowerMode mode = FollowerMode::Reoptimised;
   dp::CappedSectionOptions capped;
   double resim_step_m = 0.05;
+  // A held-up follower leaves earlier and drives under the cap (the capped DP, or the
+  // supervisor) only when that could bring its arrival forward by more than this (s) against
+  // waiting at the stop: the DP costs seconds a section.
+  double redrive_gain_s = 0.05;
   bool IsValid(std::string* error) const;
 };
 
@@ -77,12 +85,14 @@ struct CapEvent {
   std::string report;               // the capped DP's brief report
   // What the follower did (service/follower.hpp): the wait at the stop that keeps its planned
   // run clear of the train ahead, the lateness that wait gives, how the section was driven
-  // ("waited": the wait, then the planned run; "reoptimised" or "supervised": leaving earlier
+    // ("waited": the wait, then the planned run; "waited, then faster": the wait, then the
+  // section library's run for the time left; "reoptimised" or "supervised": leaving earlier
   // under the cap) and its arrival's lateness.
   double station_wait_s = 0.0;
   double waited_late_s = 0.0;
   std::string driven = "waited";
   double late_s = 0.0;
+  bool faster_tried = false;  // a faster run for the time left after the wait was tried
 };
 
 struct ServiceSummary {
