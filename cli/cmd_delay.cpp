@@ -105,7 +105,8 @@ nlohmann::json report_json(const recovery::DelayRecoveryResult& r, const recover
           t.back_on_time_at.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.back_on_time_at)},
          {"never_late", t.never_late},
          {"max_lateness_s", t.max_lateness_s},
-         {"final_lateness_s", t.final_lateness_s}});
+         {"final_lateness_s", t.final_lateness_s},
+         {"lateness_s", t.lateness_s}});
   nlohmann::json followers = nlohmann::json::array();
   for (const auto& f : r.followers)
     followers.push_back({{"train", f.train + 1},
@@ -116,7 +117,9 @@ nlohmann::json report_json(const recovery::DelayRecoveryResult& r, const recover
                          {"min_gap_m", number_or_null(f.min_gap_m)},
                          {"planned_run_margin_kmh", number_or_null(f.planned_run_margin_kmh)},
                          {"plan_margin_kmh", number_or_null(f.plan_margin_kmh)},
-                         {"on_the_line_together", std::isfinite(f.min_speed_margin_kmh)}});
+                         {"on_the_line_together", std::isfinite(f.min_speed_margin_kmh)},
+                         {"station_wait_s", f.station_wait_s},
+                         {"headway_s", f.headway_s}});
   nlohmann::json j = {{"train", a.train},
                       {"station", sm.station},
                       {"delay_s", sm.delay_s},
@@ -135,6 +138,11 @@ nlohmann::json report_json(const recovery::DelayRecoveryResult& r, const recover
                       {"trains", trains},
                       {"followers", followers},
                       {"followers_affected", sm.followers_affected},
+                      {"cascade",
+                       {{"held_up_trains", sm.cascade_trains},
+                        {"ends", sm.cascade_ends},
+                        {"plan_absorbs", sm.plan_absorbs},
+                        {"final_lateness_s", sm.cascade_final_lateness_s}}},
                       {"min_follower_margin_kmh", number_or_null(sm.min_follower_margin_kmh)},
                       {"termination", std::string(dp::termination_name(sm.termination))},
                       {"warnings", sm.warnings},
@@ -199,8 +207,10 @@ void print_report(std::FILE* out, const recovery::DelayRecoveryResult& r, bool f
 void run_delay(const DelayArgs& a) {
   if (a.reference == !a.plan_file.empty()) bad("--plan/--reference", "exactly one of them");
   if (a.station.empty()) bad("--station", "the station the train leaves late");
-  if (!std::isfinite(a.delay_s) || a.delay_s < 0.0 || a.delay_s > 86400.0)
-    bad("--delay", "a delay in seconds, 0 <= D <= 86400; got " + data::format_number(a.delay_s));
+  if (!std::isfinite(a.delay_s) || a.delay_s < 0.0 || a.delay_s > recovery::kMaxDelay_s)
+    bad("--delay", "a delay in seconds, 0 <= D <= " + data::format_number(recovery::kMaxDelay_s) +
+                       " (a longer one is a disruption, not a delay to recover); got " +
+                       data::format_number(a.delay_s));
   if (a.train < 1) bad("--train", "a train number >= 1");
   if (a.followers < 0 || a.followers > 1000) bad("--followers", "0 to 1000 followers");
   if (!(a.frontier_span_s >= 10.0 && a.frontier_span_s <= 600.0))

@@ -5,6 +5,8 @@
 // combines shards into the statistics of the whole run, to the last digit; `--adjust` searches
 // the plan family of recovery/plan_adjustment.hpp and writes the chosen plan as a timetable CSV
 // (docs/delays.md).
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -189,6 +191,22 @@ void check_targets(const MonteCarloArgs& a, bool adjust) {
   check_output_targets(targets);
 }
 
+// Refuses a run whose day records would not fit in memory, before anything is allocated.
+void check_day_memory(std::uint64_t days, std::size_t stations) {
+  const double need = static_cast<double>(days) *
+                      static_cast<double>(recovery::day_memory_bytes(stations));
+  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
+                      static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  if (have > 0.0 && need > 0.5 * have) {
+    char buf[300];
+    std::snprintf(buf, sizeof buf,
+                  "at most half the memory for the day records: %llu days need about %.1f GB, "
+                  "the machine has %.1f GB; run them in shards (--shard i/N) and merge",
+                  static_cast<unsigned long long>(days), need / 1e9, have / 1e9);
+    bad("--days", buf);
+  }
+}
+
 void run_merge(const MonteCarloArgs& a) {
   if (a.merge_files.empty()) bad("merge", "at least one shard JSON");
   check_targets(a, false);
@@ -206,9 +224,9 @@ void run_merge(const MonteCarloArgs& a) {
   }
   recovery::MonteCarloRun run;
   try {
-    run = recovery::merge_runs(shards);
+    run = recovery::merge_runs(shards, a.merge_files);
   } catch (const std::invalid_argument& e) {
-    throw data::InputError(a.merge_files.front(), 0, "days", e.what());
+    throw data::InputError("montecarlo merge", 0, "shards", e.what());
   }
   const recovery::MonteCarloStatistics s = recovery::summarise(run.days, run.histogram);
   recovery::MonteCarloSummary sm;
@@ -277,6 +295,15 @@ void run_montecarlo(const MonteCarloArgs& a) {
   const Problem p = load_fleet_problem(a.problem, "--train-file");
   PlanStops ps = read_plan_stops(p.line, a.reference, a.plan_file);
   recovery::Plan& plan = ps.plan;
+  // Before any engine is built: the shard holds days, and its day records fit in memory.
+  {
+    const auto [from, to] =
+        recovery::shard_days(static_cast<std::uint64_t>(a.days), shard.first, shard.second);
+    if (to <= from)
+      bad("--shard", "a shard that holds days: shard " + a.shard + " of " + std::to_string(a.days) +
+                         " days is empty (use at most " + std::to_string(a.days) + " shards)");
+    if (!a.adjust) check_day_memory(to - from, ps.stops.size());
+  }
   const std::vector<std::string>& stops = ps.stops;
   const std::unique_ptr<dp::SectionLibrary> lib =
       plan_library(p, a.problem, stops, a.frontier_span_s);

@@ -35,8 +35,10 @@ service::ServiceOptions service_options(const ServiceArgs& a) {
     o.mode = service::FollowerMode::Supervised;
   else if (a.follower == "reoptimise")
     o.mode = service::FollowerMode::Reoptimised;
+  else if (a.follower == "wait")
+    o.mode = service::FollowerMode::Wait;
   else
-    bad("--follower", "supervise or reoptimise; got '" + a.follower + "'");
+    bad("--follower", "supervise, reoptimise or wait; got '" + a.follower + "'");
   std::string why;
   if (!o.IsValid(&why))
     throw_on_flag(why, {{"train_length_m", "--train-length"},
@@ -63,8 +65,9 @@ void add_service_options(CLI::App* cmd, ServiceArgs& a) {
                   "separation braking b (m/s^2; 0: max braking force at 10 km/h / mass)")
       ->capture_default_str();
   cmd->add_option("--follower", a.follower,
-                  "where the cap binds: reoptimise (energy-optimal under the cap) or supervise "
-                  "(planned control, braked)")
+                  "where waiting at the stop would make a follower late: reoptimise "
+                  "(energy-optimal under the cap), supervise (planned control, braked) or wait "
+                  "(wait, then the run for the time left)")
       ->capture_default_str();
   cmd->add_option("--profiles", a.profiles_csv,
                   "every train's speed-distance profile, long format (CSV)");
@@ -106,7 +109,7 @@ std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
   run->result = service::simulate_service(library, plan, departures, o);
   const service::ServiceResult& r = run->result;
   const service::ServiceSummary& sm = r.summary;
-  std::printf("separation (b = %.3f m/s^2, train length %.0f m, margin %.0f m): %s\n",
+  std::printf("separation (b = %.4g m/s^2, train length %.0f m, margin %.0f m): %s\n",
               r.braking_m_s2, a.train_length_m, a.safety_margin_m, sm.BriefReport().c_str());
   nlohmann::json binding = nlohmann::json::array();
   for (std::size_t k = 0; k < r.planned_binding.size(); ++k)
@@ -128,11 +131,15 @@ std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
                                                     : nlohmann::json()},
                       {"reoptimised_late_s", e.reoptimised_late_s},
                       {"reoptimised_wait_s", e.reoptimised_wait_s},
-                      {"report", e.report}});
+                      {"report", e.report},
+                      {"station_wait_s", e.station_wait_s},
+                      {"driven", e.driven},
+                      {"late_s", e.late_s}});
     std::printf(
-        "  train %d section %d: planned %.1f kJ, braked by the cap %.1f kJ (%.2f s late)%s\n",
-        e.train + 1, e.section + 1, e.planned_cost_J / 1e3, e.supervised_cost_J / 1e3,
-        e.supervised_late_s,
+        "  train %d section %d: %s (waits %.2f s at the stop, arrives %.2f s late); planned %.1f "
+        "kJ, braked by the cap %.1f kJ (%.2f s late)%s\n",
+        e.train + 1, e.section + 1, e.driven.c_str(), e.station_wait_s, e.late_s,
+        e.planned_cost_J / 1e3, e.supervised_cost_J / 1e3, e.supervised_late_s,
         std::isfinite(e.reoptimised_cost_J)
             ? (", re-optimised " + data::format_number(e.reoptimised_cost_J / 1e3) + " kJ (" +
                data::format_number(e.reoptimised_late_s) + " s late)")

@@ -39,16 +39,16 @@ bool DelayDistribution::IsValid(std::string* error) const {
     return false;
   };
   if (!(p_none >= 0.0 && p_small >= 0.0 && p_none + p_small <= 1.0 + 1e-12))
-    return fail("DelayDistribution: p_none and p_small must be >= 0 with p_none + p_small <= 1");
+    return fail("the delay shares (none, small) must be >= 0 and add up to at most 1");
   if (!(small_max_s > 0.0 && small_max_s <= 3600.0))
-    return fail("DelayDistribution::small_max_s must lie in (0, 3600] s");
+    return fail("the largest small delay must lie in (0, 3600] s");
   if (tail == DelayTail::Exponential && !(tail_mean_s > 0.0 && tail_mean_s <= 3600.0))
-    return fail("DelayDistribution::tail_mean_s must lie in (0, 3600] s");
+    return fail("--tail: the exponential mean must lie in (0, 3600] s");
   if (tail == DelayTail::Uniform &&
       !(tail_low_s >= small_max_s && tail_high_s > tail_low_s && tail_high_s <= 86400.0))
     return fail(
-        "DelayDistribution: a uniform tail needs small_max_s <= tail_low_s < tail_high_s <= 86400 "
-        "s");
+        "--tail: a uniform tail needs its low end at or above the largest small delay and "
+        "below its high end, at most 86400 s");
   return true;
 }
 

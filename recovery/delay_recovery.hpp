@@ -33,6 +33,16 @@
 
 namespace ecorail::recovery {
 
+inline service::ServiceOptions delay_service_options() {
+  service::ServiceOptions o;
+  o.mode = service::FollowerMode::Wait;
+  return o;
+}
+
+// The longest delay recover_delay takes (s): three hours; a longer one is a disruption (the
+// plan is recast), not a delay to recover.
+inline constexpr double kMaxDelay_s = 10800.0;
+
 struct DelayRecoveryOptions {
   double min_dwell_s = 30.0;           // a stop's dwell never goes below min(this, planned)
   double on_time_tolerance_s = 0.05;   // re-simulated arrival within this of the plan is on time
@@ -40,8 +50,9 @@ struct DelayRecoveryOptions {
   AllocationOptions allocation;
   bool check_followers = true;
   int max_followers = 5;  // followers simulated at most, behind the late train
-  // Separation (the cap) and how a held-up follower is driven (re-optimised under the cap).
-  service::ServiceOptions service;
+  // Separation (the cap) and how a held-up follower is driven: it waits at the stop, then runs
+  // the section faster for the time left (FollowerMode::Wait, delay_service_options()).
+  service::ServiceOptions service = delay_service_options();
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -93,6 +104,8 @@ struct FollowerCheck {
   double min_speed_margin_kmh = 0.0;
   double min_distance_margin_m = 0.0;  // gap less the braking distance, least
   double min_gap_m = 0.0;
+  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
+  double headway_s = 0.0;       // its planned departure after the train ahead's
 };
 
 struct DelayRecoverySummary {
@@ -107,6 +120,14 @@ struct DelayRecoverySummary {
   double recovery_energy_kJ = 0.0, plan_energy_kJ = 0.0, rule_energy_kJ = 0.0;
   int followers_checked = 0, followers_affected = 0;
   double min_follower_margin_kmh = 0.0;  // NaN when no follower
+  // The knock-on cascade: the followers held up in a row behind the late train, whether it
+  // ends within the followers driven (false: the last one driven was still held up), the
+  // lateness of its last train at the last station, and whether the plan absorbs it (false: a
+  // follower waits at its stops longer than its headway behind the train ahead).
+  int cascade_trains = 0;
+  bool cascade_ends = true;
+  double cascade_final_lateness_s = 0.0;
+  bool plan_absorbs = true;
   double wall_s = 0.0;
   std::vector<std::string> warnings;
 
@@ -120,6 +141,9 @@ struct DelayRecoveryResult {
   AllocationSummary allocation;           // empty when no allocation was needed
   std::vector<AffectedTrain> trains;      // the late train first, then held-up followers
   std::vector<FollowerCheck> followers;
+  // The whole-line actual runs of the trains in `trains`, in the same order (empty when no
+  // follower was checked).
+  std::vector<physics::Trip> train_trips;
   physics::Trip recovery_trip;  // the late train over the recovery sections, on the clock
   physics::Trip rule_trip;      // the rule's run over the same sections
   physics::Trip planned_trip;   // the plan over the same sections

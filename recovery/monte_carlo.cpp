@@ -42,24 +42,24 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
   };
   if (!delays.IsValid(error)) return false;
   if (!(early_s >= 0.0 && early_s <= 600.0))
-    return fail("MonteCarloOptions::early_s must lie in [0, 600] s");
+    return fail("--early must lie in [0, 600] s");
   if (!(run_early_s >= 0.0 && run_early_s <= early_s))
-    return fail("MonteCarloOptions::run_early_s must lie in [0, early_s]");
+    return fail("--run-early must lie in [0, --early] s");
   if (!(min_dwell_s >= 0.0 && min_dwell_s < 1e5))
-    return fail("MonteCarloOptions::min_dwell_s must lie in [0, 1e5) s");
+    return fail("--min-dwell must lie in [0, 1e5) s");
   if (!(takeover_s > 0.0 && takeover_s <= 86400.0))
-    return fail("MonteCarloOptions::takeover_s must lie in (0, 86400] s");
+    return fail("--takeover must lie in (0, 86400] s");
   if (!(punctual_s >= 0.0 && punctual_s <= 3600.0))
-    return fail("MonteCarloOptions::punctual_s must lie in [0, 3600] s");
+    return fail("--punctual must lie in [0, 3600] s");
   if (!(on_time_tolerance_s > 0.0 && on_time_tolerance_s <= 1.0))
-    return fail("MonteCarloOptions::on_time_tolerance_s must lie in (0, 1] s");
+    return fail("the on-time tolerance must lie in (0, 1] s");
   if (!(separation_s <= 3600.0) || std::isnan(separation_s))
-    return fail("MonteCarloOptions::separation_s must be at most 3600 s (< 0: from the plan)");
+    return fail("--separation must be at most 3600 s (< 0: from the plan)");
   if (!(knot_step_s >= 0.05 && knot_step_s <= 30.0))
-    return fail("MonteCarloOptions::knot_step_s must lie in [0.05, 30] s");
+    return fail("--knot-step must lie in [0.05, 30] s");
   const double ticks = 1.0 / bin_step_s;
   if (!(bin_step_s >= 0.001 && bin_step_s <= 1.0) || std::fabs(ticks - std::round(ticks)) > 1e-9)
-    return fail("MonteCarloOptions::bin_step_s must divide one second (0.001 to 1 s)");
+    return fail("--step must divide one second (0.001 to 1 s)");
   return true;
 }
 

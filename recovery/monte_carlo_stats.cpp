@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace ecorail::recovery {
@@ -160,6 +161,46 @@ DayRecord day_from_json(const nlohmann::json& j) {
 
 constexpr const char* kFormat = "ecorail-montecarlo-1";
 
+// FNV-1a over the compact dump of the JSON without its "checksum" key (keys are sorted, numbers
+// printed to round-trip, so a file read back dumps to the same text).
+std::string content_checksum(nlohmann::json j) {
+  j.erase("checksum");
+  const std::string text = j.dump();
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+// A day's record within its physical ranges, or std::invalid_argument saying which field.
+void check_day(const DayRecord& r) {
+  const std::string day = "day " + std::to_string(r.day) + ": ";
+  auto fail = [&](const std::string& what) { throw std::invalid_argument(day + what); };
+  if (r.arrivals < 0 || r.punctual < 0 || r.punctual > r.arrivals)
+    fail("punctual arrivals between 0 and the arrivals");
+  if (r.station_arrivals.size() != r.station_punctual.size())
+    fail("as many station punctual counts as station arrivals");
+  for (std::size_t i = 0; i < r.station_arrivals.size(); ++i)
+    if (r.station_arrivals[i] < 0 || r.station_punctual[i] < 0 ||
+        r.station_punctual[i] > r.station_arrivals[i])
+      fail("punctual arrivals between 0 and the arrivals at station " + std::to_string(i + 1));
+  for (std::int64_t c : {r.recoveries, r.unrecovered_episodes, r.primary_delays, r.tail_delays,
+                         r.knock_on_delays, r.takeovers, r.arrivals_taken_over})
+    if (c < 0) fail("counts >= 0");
+  if (r.tail_delays > r.primary_delays) fail("tail delays at most the delays");
+  for (double x : {r.lateness_sum_s, r.p95_lateness_s, r.max_lateness_s, r.recovery_time_sum_s})
+    if (!(std::isfinite(x) && x >= 0.0)) fail("lateness and recovery times finite and >= 0");
+  if (r.p95_lateness_s > r.max_lateness_s) fail("a 95th percentile at most the largest lateness");
+  for (double x : {r.traction_kJ, r.regen_kJ, r.used_regen_kJ, r.substation_kJ})
+    if (!(std::isfinite(x) && x >= 0.0)) fail("energies finite and >= 0");
+  if (r.used_regen_kJ > r.regen_kJ * (1.0 + 1e-9) + 1e-6)
+    fail("used regenerated energy at most the regenerated energy");
+}
+
 }  // namespace
 
 nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard) {
@@ -204,6 +245,7 @@ nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard) {
                       {"lateness_histogram", {{"bin_s", 1}, {"counts", run.histogram}}},
                       {"days", days}};
   if (!shard.empty()) j["shard"] = shard;
+  j["checksum"] = content_checksum(j);
   return j;
 }
 
@@ -211,6 +253,10 @@ MonteCarloRun run_from_json(const nlohmann::json& j) {
   try {
     if (j.at("format").get<std::string>() != kFormat)
       throw std::invalid_argument(std::string("format '") + kFormat + "'");
+    if (!j.contains("checksum") || j.at("checksum").get<std::string>() != content_checksum(j))
+      throw std::invalid_argument(
+          "a checksum that matches its content (the file was edited, damaged or written by an "
+          "older program; run the shard again)");
     MonteCarloRun r;
     r.config = j.at("config");
     r.stations = j.at("stations").get<std::vector<std::string>>();
@@ -219,40 +265,76 @@ MonteCarloRun run_from_json(const nlohmann::json& j) {
     if (r.histogram.size() != static_cast<std::size_t>(kLatenessHistogramBins))
       throw std::invalid_argument("a lateness histogram of " +
                                   std::to_string(kLatenessHistogramBins) + " bins");
-    for (const nlohmann::json& d : j.at("days")) r.days.push_back(day_from_json(d));
+    for (const nlohmann::json& d : j.at("days")) {
+      r.days.push_back(day_from_json(d));
+      check_day(r.days.back());
+    }
+    for (std::int64_t c : r.histogram)
+      if (c < 0) throw std::invalid_argument("lateness histogram counts >= 0");
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("a Monte Carlo JSON (") + e.what() + ")");
   }
 }
 
-MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards) {
+MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards,
+                         const std::vector<std::string>& names) {
   if (shards.empty()) throw std::invalid_argument("at least one shard to merge");
+  auto name = [&](std::size_t i) {
+    return i < names.size() ? names[i] : "shard " + std::to_string(i + 1);
+  };
   MonteCarloRun out;
   out.config = shards.front().config;
   out.stations = shards.front().stations;
   out.plan_energy = shards.front().plan_energy;
   out.histogram.assign(kLatenessHistogramBins, 0);
-  for (const MonteCarloRun& s : shards) {
+  std::vector<std::size_t> owner;
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const MonteCarloRun& s = shards[k];
     if (s.config != out.config || s.stations != out.stations || s.plan_energy != out.plan_energy)
-      throw std::invalid_argument(
-          "shards of one run (the same plan, seed, days and options); these differ in their "
-          "config");
+      throw std::invalid_argument(name(k) + ": a shard of the same run as " + name(0) +
+                                  " (the same plan, seed, days and options); its config differs");
     for (std::size_t i = 0; i < out.histogram.size(); ++i) out.histogram[i] += s.histogram[i];
     out.days.insert(out.days.end(), s.days.begin(), s.days.end());
+    owner.insert(owner.end(), s.days.size(), k);
   }
-  std::sort(out.days.begin(), out.days.end(),
-            [](const DayRecord& a, const DayRecord& b) { return a.day < b.day; });
+  std::vector<std::size_t> order(out.days.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out.days[a].day < out.days[b].day;
+  });
+  std::vector<DayRecord> sorted;
+  sorted.reserve(order.size());
   const std::uint64_t total = out.config.at("days").get<std::uint64_t>();
-  if (out.days.size() != total)
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const DayRecord& d = out.days[order[i]];
+    if (i > 0 && d.day == sorted.back().day)
+      throw std::invalid_argument(name(owner[order[i]]) + ": every day of the run exactly once; day " +
+                                  std::to_string(d.day) + " is also in " +
+                                  name(owner[order[i - 1]]));
+    if (d.day >= total)
+      throw std::invalid_argument(name(owner[order[i]]) + ": days of the run (0 to " +
+                                  std::to_string(total) + "); it holds day " +
+                                  std::to_string(d.day));
+    sorted.push_back(d);
+  }
+  out.days = std::move(sorted);
+  if (out.days.size() != total) {
+    std::string missing;
+    for (std::uint64_t i = 0, k = 0; i < total && missing.empty(); ++i, ++k)
+      if (k >= out.days.size() || out.days[k].day != i) missing = std::to_string(i);
     throw std::invalid_argument("every day of the run exactly once: the shards hold " +
                                 std::to_string(out.days.size()) + " days of " +
-                                std::to_string(total));
-  for (std::uint64_t i = 0; i < total; ++i)
-    if (out.days[i].day != i)
-      throw std::invalid_argument("every day of the run exactly once: day " + std::to_string(i) +
-                                  " is missing or repeated");
+                                std::to_string(total) + " (day " + missing +
+                                " is missing; merge every shard of the run)");
+  }
   return out;
+}
+
+std::size_t day_memory_bytes(std::size_t stations) {
+  // The record, its per-station counts and histogram, and about 1 KB of JSON per day.
+  return sizeof(DayRecord) + sizeof(std::int64_t) * (2 * stations + kLatenessHistogramBins) +
+         1024;
 }
 
 std::pair<std::uint64_t, std::uint64_t> shard_days(std::uint64_t total, int index, int count) {

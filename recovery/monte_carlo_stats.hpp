@@ -83,13 +83,23 @@ struct MonteCarloRun {
 };
 
 // The run's JSON: format, config, plan, statistics (with confidence intervals), per-station
-// punctuality, the pooled histogram and every day's record. shard: "" for a whole run, "i/N".
+// punctuality, the pooled histogram and every day's record, and "checksum": FNV-1a (64 bit,
+// hex) of the JSON's compact dump without that key, so that an edited or damaged file is
+// recognised when it is read back. shard: "" for a whole run, "i/N".
 nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard);
-// Reads a run's JSON back (std::invalid_argument naming what is missing or wrong).
+// Reads a run's JSON back (std::invalid_argument naming what is missing or wrong): the checksum
+// must match the content, and every day must lie in its physical ranges (punctual <= arrivals
+// at every station and over the day, counts >= 0, lateness and energies finite and >= 0, used
+// regenerated energy at most the regenerated energy).
 MonteCarloRun run_from_json(const nlohmann::json& j);
 // Shards of one run (same config) into the whole run: every day 0 .. days-1 exactly once
-// (std::invalid_argument otherwise).
-MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards);
+// (std::invalid_argument otherwise, naming the shard by names[i] when names are given).
+MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards,
+                         const std::vector<std::string>& names = {});
+// Memory a run keeps per simulated day (its record, per-station counts and lateness histogram,
+// and its JSON), for stations stations: what --days is checked against before anything is
+// allocated.
+std::size_t day_memory_bytes(std::size_t stations);
 // The days [first, last) of shard i (1-based) of N over total days: contiguous, sizes differing
 // by at most one.
 std::pair<std::uint64_t, std::uint64_t> shard_days(std::uint64_t total, int index, int count);

@@ -15,21 +15,21 @@ bool PlanAdjustmentOptions::IsValid(std::string* error) const {
   if (thetas.empty() || extra_dwells_s.empty())
     return fail("PlanAdjustmentOptions: at least one theta and one extra dwell");
   for (double t : thetas)
-    if (!(t >= 0.0 && t <= 1.0)) return fail("PlanAdjustmentOptions::thetas must lie in [0, 1]");
+    if (!(t >= 0.0 && t <= 1.0)) return fail("--thetas must lie in [0, 1]");
   for (double x : extra_dwells_s)
     if (!(x >= 0.0 && x <= 60.0))
-      return fail("PlanAdjustmentOptions::extra_dwells_s must lie in [0, 60] s");
+      return fail("--extra-dwells must lie in [0, 60] s");
   if (run_early_s.empty()) return fail("PlanAdjustmentOptions: at least one run_early_s");
   for (double b : run_early_s)
     if (!(b >= 0.0 && b <= 600.0))
-      return fail("PlanAdjustmentOptions::run_early_s must lie in [0, 600] s");
+      return fail("--run-early-values must lie in [0, 600] s");
   if (!(max_dwell_s > 0.0 && max_dwell_s <= 600.0))
-    return fail("PlanAdjustmentOptions::max_dwell_s must lie in (0, 600] s");
+    return fail("the longest dwell of --adjust must lie in (0, 600] s");
   if (search_days < 2 || search_days > 1000000)
-    return fail("PlanAdjustmentOptions::search_days must lie in [2, 1e6]");
+    return fail("--search-days must lie in [2, 1e6]");
   if (!(target_punctuality >= 0.0 && target_punctuality <= 1.0))
-    return fail("PlanAdjustmentOptions::target_punctuality must lie in [0, 1]");
-  if (threads < 0) return fail("PlanAdjustmentOptions::threads must be >= 0");
+    return fail("--target must lie in [0, 1]");
+  if (threads < 0) return fail("--threads must be >= 0");
   return true;
 }
 

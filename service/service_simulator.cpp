@@ -1,5 +1,7 @@
 #include "service/service_simulator.hpp"
 
+#include "service/follower.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -76,6 +78,23 @@ ServicePlan plan_from_programs(const dp::SectionLibrary& library,
   return plan;
 }
 
+ServicePlan plan_from_runs(const dp::SectionLibrary& library,
+                           std::vector<physics::ControlProgram> programs,
+                           std::vector<physics::SimulationResult> runs,
+                           std::vector<double> dwells_s) {
+  const std::size_t n = library.size();
+  if (programs.size() != n || runs.size() != n || dwells_s.size() + 1 != n)
+    throw std::invalid_argument("a service plan needs one program per section, one dwell per stop");
+  ServicePlan plan;
+  plan.programs = std::move(programs);
+  plan.runs = std::move(runs);
+  plan.dwells_s = std::move(dwells_s);
+  std::vector<double> dwell_after = plan.dwells_s;
+  dwell_after.push_back(0.0);
+  plan.trip = trip_of(library, plan.runs, dwell_after, 0.0);
+  return plan;
+}
+
 ServicePlan optimal_split_plan(const dp::SectionLibrary& library,
                                const std::vector<double>& dwells_s, double trip_time_s,
                                const dp::JourneyOptions& options) {
@@ -103,6 +122,10 @@ bool ServiceOptions::IsValid(std::string* error) const {
     if (error) *error = "resim_step_m: expected (0, 1] m";
     return false;
   }
+  if (!(redrive_gain_s >= 0.0 && redrive_gain_s <= 3600.0)) {
+    if (error) *error = "redrive_gain_s: expected 0 to 3600 s";
+    return false;
+  }
   return true;
 }
 
@@ -122,61 +145,7 @@ physics::Trip run_follower(const dp::SectionLibrary& library, const ServicePlan&
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double b, int train,
                            std::vector<CapEvent>* events) {
-  const physics::Trip planned = plan.trip.shifted(departure_s);
-  const SeparationScan scan = scan_separation(leader, planned, b, options.separation);
-  if (!scan.exceeded) return planned;
-  const std::size_t n = library.size();
-  std::vector<physics::SimulationResult> sims(n);
-  std::vector<double> dwell_after(n, 0.0);
-  double trip_departure = departure_s, start = departure_s;
-  for (std::size_t i = 0; i < n; ++i) {
-    const dp::SectionEngine& engine = library.engine(i);
-    const double section_start = plan.trip.section_start_m(i);
-    const physics::SpeedCap cap = separation_cap(leader, section_start, b, options.separation);
-    const double planned_arrival = planned.stop(i + 1).arrival_s;
-    physics::SimulationResult sup =
-        drive_planned(engine, plan.programs[i], plan.runs[i], cap, start, options.resim_step_m);
-    if (sup.cap_binding_m > 0.0 || sup.cap_wait_s > 0.0) {
-      CapEvent ev;
-      ev.train = train;
-      ev.section = static_cast<int>(i);
-      const double section_end = section_start + library.route(i).length_m();
-      for (const CapStretch& c : scan.binding)
-        if (c.to_m >= section_start && c.from_m <= section_end) {
-          ev.first_binding = c;
-          break;
-        }
-      ev.planned_cost_J = engine.energy_cost_J(plan.runs[i]);
-      ev.supervised_cost_J = engine.energy_cost_J(sup);
-      ev.supervised_late_s = start + sup.running_time_s - planned_arrival;
-      ev.reoptimised_cost_J = NAN;
-      if (options.mode == FollowerMode::Reoptimised) {
-        const dp::CappedSectionResult r = dp::solve_capped_section(
-            engine, cap, start, planned_arrival - start, options.capped, plan.programs[i]);
-        ev.report = r.summary.BriefReport();
-        if (r.summary.termination != dp::Termination::FAILURE) {
-          if (i == 0)
-            trip_departure += r.wait_s;
-          else
-            dwell_after[i - 1] += r.wait_s;
-          start += r.wait_s;
-          sup = r.sim;
-          ev.reoptimised_cost_J = r.summary.cost_J;
-          ev.reoptimised_wait_s = r.wait_s;
-          ev.reoptimised_late_s = start + sup.running_time_s - planned_arrival;
-        }
-      }
-      if (events) events->push_back(ev);
-    }
-    sims[i] = std::move(sup);
-    const double arrival = start + sims[i].running_time_s;
-    if (i + 1 < n) {
-      const double next = std::max(planned.stop(i + 1).departure_s, arrival + plan.dwells_s[i]);
-      dwell_after[i] = next - arrival;
-      start = next;
-    }
-  }
-  return trip_of(library, sims, dwell_after, trip_departure);
+  return drive_follower(library, plan, leader, departure_s, options, b, train, events).trip;
 }
 
 ServiceResult simulate_service(const dp::SectionLibrary& library, const ServicePlan& plan,
@@ -204,15 +173,11 @@ ServiceResult simulate_service(const dp::SectionLibrary& library, const ServiceP
     const physics::Trip& leader = out.trips[k - 1];
     const SeparationScan before = scan_separation(leader, planned, b, options.separation);
     out.planned_binding[k] = before.binding;
-    SeparationScan after = before;
-    if (before.exceeded) {
-      out.trips.push_back(run_follower(library, plan, leader, departures_s[k], options, b,
-                                       static_cast<int>(k), &out.events));
-      ++sm.trains_resimulated;
-      after = scan_separation(leader, out.trips.back(), b, options.separation);
-    } else {
-      out.trips.push_back(planned);
-    }
+    FollowerRun run = drive_follower(library, plan, leader, departures_s[k], options, b,
+                                     static_cast<int>(k), &out.events);
+    if (run.held_up) ++sm.trains_resimulated;
+    out.trips.push_back(run.trip);
+    const SeparationScan& after = run.scan;
     if (after.min_speed_margin_kmh < sm.min_speed_margin_kmh) {
       sm.min_speed_margin_kmh = after.min_speed_margin_kmh;
       sm.min_margin_train = static_cast<int>(k);

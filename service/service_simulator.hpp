@@ -42,18 +42,32 @@ struct ServicePlan {
 ServicePlan optimal_split_plan(const dp::SectionLibrary& library,
                                const std::vector<double>& dwells_s, double trip_time_s,
                                const dp::JourneyOptions& options);
+// The plan of given programs with their runs already simulated (each run the program's on its
+// section; not checked).
+ServicePlan plan_from_runs(const dp::SectionLibrary& library,
+                           std::vector<physics::ControlProgram> programs,
+                           std::vector<physics::SimulationResult> runs,
+                           std::vector<double> dwells_s);
 // The plan of given programs (each simulated on its section).
 ServicePlan plan_from_programs(const dp::SectionLibrary& library,
                                std::vector<physics::ControlProgram> programs,
                                std::vector<double> dwells_s);
 
-enum class FollowerMode { Supervised, Reoptimised };
+// How a held-up follower drives a section where waiting at the stop would make it late:
+// Supervised: its planned control braked by the supervisor; Reoptimised: the capped DP; Wait:
+// it only waits at the stop and then runs the section library's run for the time left (no
+// drive under the cap: what the delay and Monte Carlo commands use, a DP costs seconds).
+enum class FollowerMode { Supervised, Reoptimised, Wait };
 
 struct ServiceOptions {
   SeparationOptions separation;
   FollowerMode mode = FollowerMode::Reoptimised;
   dp::CappedSectionOptions capped;
   double resim_step_m = 0.05;
+  // A held-up follower leaves earlier and drives under the cap (the capped DP, or the
+  // supervisor) only when that could bring its arrival forward by more than this (s) against
+  // waiting at the stop: the DP costs seconds a section.
+  double redrive_gain_s = 0.05;
   bool IsValid(std::string* error) const;
 };
 
@@ -69,6 +83,16 @@ struct CapEvent {
   double reoptimised_late_s = 0.0;
   double reoptimised_wait_s = 0.0;  // of that, waiting at the platform
   std::string report;               // the capped DP's brief report
+  // What the follower did (service/follower.hpp): the wait at the stop that keeps its planned
+  // run clear of the train ahead, the lateness that wait gives, how the section was driven
+    // ("waited": the wait, then the planned run; "waited, then faster": the wait, then the
+  // section library's run for the time left; "reoptimised" or "supervised": leaving earlier
+  // under the cap) and its arrival's lateness.
+  double station_wait_s = 0.0;
+  double waited_late_s = 0.0;
+  std::string driven = "waited";
+  double late_s = 0.0;
+  bool faster_tried = false;  // a faster run for the time left after the wait was tried
 };
 
 struct ServiceSummary {
@@ -110,9 +134,9 @@ ServiceResult simulate_service(const dp::SectionLibrary& library, const ServiceP
                                const std::vector<double>& departures_s,
                                const ServiceOptions& options);
 
-// One train behind a given leader (the building block; a leader trip of any shape): the
-// actual run of a train planned to depart at departure_s. events receives the sections where
-// the cap bound.
+// One train behind a given whole-line leader trip: the actual run of a train planned to depart
+// at departure_s (service/follower.hpp's drive_follower, its trip only). events receives the
+// sections where the planned run would have come too close.
 physics::Trip run_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double braking_m_s2, int train,

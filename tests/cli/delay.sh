@@ -82,4 +82,39 @@ expect_error "--svg" delay --plan plan.csv --train 1 --station A7 --delay 10 --s
 # Train 1 departs A7 before it arrives there.
 awk -F, 'BEGIN{OFS=","} NR==3{$4=$5+1} {print}' plan.csv > broken.csv
 expect_error "broken.csv" delay --plan broken.csv --train 1 --station A7 --delay 10 --json x.json
+# A delay far longer than the headway (issue: a follower ended 993 m inside the late train and
+# later passed it): trains 120 s apart, train 1 leaves A7 5000 s late. Every follower waits at a
+# stop for the line ahead to clear, never comes closer than its braking distance, never arrives
+# anywhere before the train ahead, and the cascade is reported.
+"$ecorail" timetable evaluate --from A6 --to A9 --trip-time 380 --trains 3 --span 240 \
+  --headway 120:660 --csv close.csv --quiet > /dev/null || { echo "FAIL: close plan"; fail=1; }
+"$ecorail" delay --plan close.csv --train 1 --station A7 --delay 5000 --followers 2 \
+  "${cache[@]}" --json long.json > long.txt || { echo "FAIL: long delay"; cat long.txt; fail=1; }
+python3 - <<'PY' || fail=1
+import csv, json
+d = json.load(open("long.json"))
+plan = {}
+for row in csv.DictReader(open("close.csv")):
+    plan.setdefault(int(row["train"]), {})[row["station"]] = float(row["arrival_s"])
+f = d["followers"]
+assert len(f) == 2 and all(x["affected"] for x in f), f
+for x in f:
+    assert x["min_gap_m"] >= 0.0, x
+    assert x["min_distance_margin_m"] >= -0.01, x
+    assert x["min_speed_margin_kmh"] >= -1e-3, x
+    assert x["station_wait_s"] > 4000, x
+trains = {t["train"]: t for t in d["trains"]}
+assert sorted(trains) == [1, 2, 3], trains
+stations = d["stations"]
+for j, st in enumerate(stations[1:], start=1):
+    arrive = [plan[k][st] + trains[k]["lateness_s"][j] for k in (1, 2, 3)]
+    assert arrive[0] < arrive[1] < arrive[2], (st, arrive)
+c = d["cascade"]
+assert c["held_up_trains"] == 2 and c["ends"] is False and c["plan_absorbs"] is False, c
+assert c["final_lateness_s"] > 4000, c
+assert any("cannot absorb" in w for w in d["warnings"]), d["warnings"]
+PY
+# The delay is bounded, with a clear error (it was accepted up to 86400 s and silently capped).
+expect_error "--delay" delay --plan plan.csv --train 1 --station A7 --delay 20000 --json x.json
+expect_error "--delay" delay --plan plan.csv --train 1 --station A7 --delay 86400 --json x.json
 exit $fail

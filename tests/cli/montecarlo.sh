@@ -127,6 +127,26 @@ expect_error "--plan/--reference" montecarlo --days 3 --json x.json
 expect_error "nothere.csv" montecarlo --plan nothere.csv --days 3 --json x.json
 expect_error "--svg-prefix" "${run[@]}" --svg-prefix nodir/p
 expect_error "days" montecarlo merge s1.json --json x.json
-expect_error "early_s" "${run[@]}" --early -1 --json x.json
-expect_error "run_early_s" "${run[@]}" --run-early 11 --json x.json
+expect_error "--early" "${run[@]}" --early -1 --json x.json
+expect_error "--run-early" "${run[@]}" --run-early 11 --json x.json
+# Messages name the flag, never the library's options field.
+"$ecorail" "${run[@]}" --early -1 --json x.json 2> err.txt
+grep -q "MonteCarloOptions\|early_s" err.txt && { echo "FAIL: internal name"; cat err.txt; fail=1; }
+# A tampered shard (a day with more punctual arrivals than arrivals, traction -1e300 kJ) is
+# refused naming that file, not merged into a punctuality above 1.
+python3 - <<'PY'
+import json
+d = json.load(open("s1.json"))
+d["days"][0]["punctual"] = d["days"][0]["arrivals"] + 5
+d["days"][0]["traction_kJ"] = -1e300
+json.dump(d, open("tampered.json", "w"))
+PY
+expect_error "tampered.json" montecarlo merge tampered.json s2.json --json x.json
+# A shard that repeats another's days is refused naming it.
+cp s1.json again.json
+expect_error "again.json" montecarlo merge s1.json again.json s2.json --json x.json
+# An empty shard is refused, not reported as "days 1-0" with zeros.
+expect_error "--shard" montecarlo --plan plan.csv --days 3 --shard 5/10 "${cache[@]}" --json x.json
+# Days whose records cannot fit in memory are refused before anything is allocated.
+expect_error "--days" montecarlo --plan plan.csv --days 100000000 "${cache[@]}" --json x.json
 exit $fail

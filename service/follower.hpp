@@ -1,0 +1,53 @@
+// One train behind the actual run of the train ahead, on one track (questions 2.2 and 3): the
+// follower model that `timetable --separation`, `delay` and the Monte Carlo share. Section by
+// section the follower is ready to leave a stop at its planned departure (or its arrival plus the
+// planned dwell, when it is late). It never leaves into an occupied stretch: it waits at the
+// stop until its planned run of the section, started then, keeps at every sample a gap to the
+// train ahead of at least its braking distance, gap >= v^2 / 2b (equivalently v <= sqrt(2 L b);
+// the gap is the leader's position less the train length and safety margin less its own). That
+// wait is exact on the samples: the leader's position is non-decreasing, so the sample at
+// (t, s, v) needs the leader at s + room + v^2 / 2b, which it first reaches at a known clock
+// time; the least wait is the largest of those times less the sample's. Where the wait makes
+// the follower late, it may instead leave earlier and drive under the moving cap (re-optimised
+// for its planned arrival, dp/capped_section.hpp, or its planned control braked by the
+// supervisor), when that run arrives earlier and keeps the same invariant. A follower is
+// re-driven only in the sections where its planned run would bind; elsewhere it runs its planned
+// section. The whole run is scanned once more against the train ahead and a run that comes
+// closer than the braking distance anywhere is an error (std::logic_error), never a result.
+#pragma once
+
+#include <vector>
+
+#include "dp/section_library.hpp"
+#include "physics/trip.hpp"
+#include "service/separation.hpp"
+#include "service/service_simulator.hpp"
+
+namespace ecorail::service {
+
+struct FollowerRun {
+  physics::Trip trip;             // the actual run, on the clock
+  bool held_up = false;           // its planned run would come closer than the braking distance
+  double station_wait_s = 0.0;    // waited at stops for the line ahead to clear, in total
+  int sections_redriven = 0;      // sections run other than as planned
+  std::vector<double> late_s;     // arrival lateness at each stop (0 at the first: departure)
+  SeparationScan planned_scan;    // the planned run against the train ahead
+  SeparationScan scan;            // the actual run against the train ahead
+};
+
+// The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
+// whole-line trip on the clock). events (may be null) receives one entry per re-driven section.
+FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
+                           const physics::Trip& leader, double departure_s,
+                           const ServiceOptions& options, double braking_m_s2, int train,
+                           std::vector<CapEvent>* events);
+
+// The least distance margin a scan may show and still count as kept: the sampled check meets
+// the braking distance to within a centimetre (the wait is rounded up by 0.05 s).
+inline constexpr double kDistanceMarginTolerance_m = 0.01;
+
+// True when the scan keeps the invariant: never above the cap, never closer than the braking
+// distance (within kDistanceMarginTolerance_m), never a negative gap.
+bool keeps_separation(const SeparationScan& scan);
+
+}  // namespace ecorail::service
