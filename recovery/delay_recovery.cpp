@@ -10,7 +10,7 @@
 
 #include "dp/time_target.hpp"
 #include "service/service_simulator.hpp"
-#include "timetable/fleet_pattern.hpp"
+#include "fleet/fleet_pattern.hpp"
 
 namespace ecorail::recovery {
 
@@ -420,14 +420,14 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
       if (s.index + 1 < n) dwells[s.index] = s.new_dwell_s;
     }
     const physics::Trip leader_planned =
-        timetable::trip_from_runs(library, planned_runs(train), planned_dwells(train))
+        fleet::trip_from_runs(library, planned_runs(train), planned_dwells(train))
             .shifted(st.departure_s[0]);
-    physics::Trip leader = timetable::trip_from_runs(library, runs, dwells).shifted(trip_dep);
+    physics::Trip leader = fleet::trip_from_runs(library, runs, dwells).shifted(trip_dep);
     physics::Trip leader_plan = leader_planned;
     for (std::size_t f = train + 1;
          f < plan.trains.size() && static_cast<int>(f - train) <= options.max_followers; ++f) {
       const physics::Trip follower_plan =
-          timetable::trip_from_runs(library, planned_runs(f), planned_dwells(f))
+          fleet::trip_from_runs(library, planned_runs(f), planned_dwells(f))
               .shifted(plan.trains[f].departure_s[0]);
       const service::SeparationScan scan = service::scan_separation(leader, follower_plan, b, sep);
       const service::SeparationScan base =
