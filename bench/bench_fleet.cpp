@@ -10,18 +10,22 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
 
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "power/supply_loader.hpp"
 #include "energy/fleet_energy_model.hpp"
+#include "energy/network_bound.hpp"
+#include "energy/network_model.hpp"
+#include "energy/pair_bound.hpp"
+#include "energy/power_flow_model.hpp"
 #include "fleet/fleet_pattern.hpp"
 #include "fleet/headway_optimiser.hpp"
+#include "fleet/pattern_search.hpp"
 #include "power/network_balance.hpp"
-#include "energy/network_bound.hpp"
 #include "power/network_evaluation.hpp"
-#include "energy/pair_bound.hpp"
+#include "power/supply_loader.hpp"
 
 namespace {
 
@@ -40,17 +44,22 @@ const fleet::PatternTrip& pattern() {
   return p;
 }
 
-const fleet::FleetModels& models(fleet::EnergyModel model,
-                                     energy::OverlapVariant variant) {
-  static std::map<int, std::unique_ptr<fleet::FleetModels>> cache;
-  auto& slot = cache[static_cast<int>(model) * 2 + static_cast<int>(variant)];
+// The reference fleet's model of that name (and overlap variant), built once.
+const energy::FleetEnergyModel& models(const std::string& model, energy::OverlapVariant variant) {
+  static std::map<std::string, std::unique_ptr<energy::FleetEnergyModel>> cache;
+  auto& slot = cache[model + std::string(energy::overlap_variant_name(variant))];
   if (!slot) {
     energy::EnergyModelOptions o;
     o.model = model;
     o.overlap = variant;
-    slot = std::make_unique<fleet::FleetModels>(pattern().trip, fleet::FleetProblem{}, o);
+    slot = fleet::make_model(pattern().trip, fleet::FleetProblem{}, o);
   }
   return *slot;
+}
+
+const energy::PowerFlowModel& power_flow() {
+  return dynamic_cast<const energy::PowerFlowModel&>(
+      models("power-flow", energy::OverlapVariant::Ahead));
 }
 
 std::vector<int> uniform() {
@@ -58,8 +67,7 @@ std::vector<int> uniform() {
 }
 
 void BM_FullEvaluation(benchmark::State& state) {
-  const auto& m = models(fleet::EnergyModel::PowerFlow, energy::OverlapVariant::Ahead);
-  auto balance = m.make_balance();
+  auto balance = power_flow().make_power_balance();
   const auto t = uniform();
   for (auto _ : state) {
     balance->place_all(t);  // removes the previous placement, lays all 100 trains again
@@ -69,8 +77,7 @@ void BM_FullEvaluation(benchmark::State& state) {
 BENCHMARK(BM_FullEvaluation)->Unit(benchmark::kMillisecond);
 
 void BM_IncrementalMove(benchmark::State& state) {
-  const auto& m = models(fleet::EnergyModel::PowerFlow, energy::OverlapVariant::Ahead);
-  auto balance = m.make_balance();
+  auto balance = power_flow().make_power_balance();
   const auto t = uniform();
   balance->place_all(t);
   int k = 1;
@@ -86,22 +93,21 @@ BENCHMARK(BM_IncrementalMove)->Unit(benchmark::kMicrosecond);
 void BM_OverlapExactDp(benchmark::State& state) {
   const auto variant =
       state.range(0) == 0 ? energy::OverlapVariant::Ahead : energy::OverlapVariant::Either;
-  const auto& m = models(fleet::EnergyModel::Overlap, variant);
-  for (auto _ : state) benchmark::DoNotOptimize(fleet::optimise_headways(m, {}));
+  const auto& m = models("overlap", variant);
+  for (auto _ : state) benchmark::DoNotOptimize(fleet::optimise_headways(m, {}, {}));
 }
 BENCHMARK(BM_OverlapExactDp)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_PairBound(benchmark::State& state) {
-  const auto& m = models(fleet::EnergyModel::PowerFlow, energy::OverlapVariant::Ahead);
   for (auto _ : state)
-    benchmark::DoNotOptimize(energy::used_regen_bound(m.profile(), m.problem()));
+    benchmark::DoNotOptimize(
+        energy::used_regen_bound(power_flow().profile(), power_flow().limits()));
 }
 BENCHMARK(BM_PairBound)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_PowerFlowOptimisation(benchmark::State& state) {
-  const auto& m = models(fleet::EnergyModel::PowerFlow, energy::OverlapVariant::Ahead);
   for (auto _ : state) {
-    const auto r = fleet::optimise_headways(m, {});
+    const auto r = fleet::optimise_headways(power_flow(), {}, {});
     state.counters["used_regen_kJ"] = r.summary.used_regen_J / 1e3;
     state.counters["gap_pct"] = 100.0 * r.summary.gap_fraction;
   }
@@ -114,10 +120,10 @@ BENCHMARK(BM_PowerFlowOptimisation)->Unit(benchmark::kSecond)->Iterations(1);
 // each a DC load flow with the example supply data/contest/power_supply.toml) evaluated in
 // full on all threads (Arg: thread count), and one incremental move of one train and back
 // (each re-solves the instants of the train's old and new runs, 2 x ~20 900).
-const fleet::FleetModels& network_models() {
-  static const std::unique_ptr<fleet::FleetModels> m = [] {
+const energy::NetworkModel& network_models() {
+  static const std::unique_ptr<energy::NetworkModel> m = [] {
     energy::EnergyModelOptions o;
-    o.model = fleet::EnergyModel::Network;
+    o.model = "network";
     o.time_step_s = energy::kNetworkTimeStep_s;
     // Run from the source tree's root (or next to this file's tree).
     std::filesystem::path file = "data/contest/power_supply.toml";
@@ -125,7 +131,8 @@ const fleet::FleetModels& network_models() {
       file = std::filesystem::path(__FILE__).parent_path().parent_path() / file;
     o.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(file.string()));
-    return std::make_unique<fleet::FleetModels>(pattern().trip, fleet::FleetProblem{}, o);
+    return std::make_unique<energy::NetworkModel>(pattern().trip,
+                                                  fleet::limits_of(fleet::FleetProblem{}), o);
   }();
   return *m;
 }
@@ -175,7 +182,7 @@ void BM_NetworkBound(benchmark::State& state) {
   const auto& m = network_models();
   for (auto _ : state) {
     benchmark::DoNotOptimize(energy::network_substation_bound(
-        m.network_profile(), *m.options().power_supply, 1.0, m.problem()));
+        m.network_profile(), *m.options().power_supply, 1.0, m.limits()));
   }
 }
 BENCHMARK(BM_NetworkBound)->Unit(benchmark::kMillisecond);

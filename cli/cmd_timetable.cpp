@@ -13,8 +13,6 @@
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
-#include "data/route_builder.hpp"
-#include "dp/time_target.hpp"
 #include "fleet/timetable_study.hpp"
 #include "output/fleet_outputs.hpp"
 #include "output/timetable_json.hpp"
@@ -46,51 +44,10 @@ void print_energy(const energy::FleetEvaluation& ev, const char* what) {
       ev.total.regen_J > 0 ? 100.0 * ev.total.used_regen_J / ev.total.regen_J : 0.0);
 }
 
-fleet::TimetableStudy make_study(const TimetableArgs& a) {
-  fleet::TimetableStudySetup setup;
-  setup.problem = fleet_problem(a);
-  setup.model = model_options(a);
-  std::vector<OutputTarget> targets = {{"--json", a.json, false},
-                                       {"--csv", a.csv, false},
-                                       {"--xlsx", a.xlsx, false},
-                                       {"--diagram", a.diagram, true},
-                                       {"--power-plot", a.power_plot, true},
-                                       {"--voltage-plot", a.voltage_plot, true}};
-  const std::vector<OutputTarget> gtfs = gtfs_targets(a.gtfs);
-  targets.insert(targets.end(), gtfs.begin(), gtfs.end());  // no GTFS file is another's path
-  check_output_targets(targets);
-  check_service_args(a.service);
-  if (!a.voltage_plot.empty() && a.model != "network")
-    bad("--voltage-plot", "--model network (only the network model has line voltages)");
-  Problem p = load_fleet_problem(a.problem);
-  const std::string from = a.problem.from.empty() ? p.line.stations.front().name : a.problem.from;
-  const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;
-  setup.stops = data::stops_between(p.line, from, to);
-  if (setup.stops.size() < 2) bad("--to", "a station other than --from");
-  setup.line = std::move(p.line);
-  setup.train = std::move(p.train);
-  setup.engine = engine_options(a.problem);
-  setup.dwell_s = a.dwell_s;
-  try {
-    return fleet::TimetableStudy(setup);
-  } catch (const dp::InfeasibleTimeError& e) {
-    bad("--trip-time", "a trip time that leaves at least the flat-out running time of " +
-                           data::format_number(e.minimum_s()) + " s after the dwells");
-  } catch (const std::invalid_argument& e) {
-    // Options that do not fit the run: a section boundary or the supply beyond its end.
-    const std::string what = e.what();
-    if (what.rfind("section_boundaries_m: ", 0) == 0) bad("--sections-at", what.substr(22));
-    if (what.rfind("power_supply: ", 0) == 0)
-      throw data::InputError(a.power_supply, 0, "position", what.substr(14));
-    throw;
-  }
-  return fleet::TimetableStudy(setup);  // not reached: every catch above throws
-}
-
 void write_outputs(const TimetableArgs& a, const fleet::TimetableStudy& s,
                    const energy::FleetEvaluation& ev, nlohmann::json energy) {
-  output::FleetTimetable tt{s.stops(), s.positions_m(), ev.departures_s, s.pattern().trip,
-                            s.problem().peak_windows, s.per_train_trips()};
+  output::FleetTimetable tt{s.stops(),        s.positions_m(),          ev.departures_s,
+                            s.pattern().trip, s.problem().peak_windows, s.per_train_trips()};
   const auto [w0, w1] = parse_range(a.window, "--window");
   data::OutputBatch batch;
   // The separation check first: it adds to the energy JSON (the batch writes on add).

@@ -4,6 +4,9 @@
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "data/route_builder.hpp"
+#include "dp/resource_estimate.hpp"
+#include "dp/time_target.hpp"
 #include "energy/model_registry.hpp"
 #include "fleet/windowed_classes.hpp"
 #include "power/supply_loader.hpp"
@@ -102,6 +105,12 @@ energy::EnergyModelOptions model_options(const TimetableArgs& a) {
     bad("--sections-at",
         "at least one supply-section boundary (m from the first station) for "
         "--model sections");
+  // --separation is a flag: a value (--separation=-5) would silently read as "off".
+  if (const CLI::Option* sep = a.service_separation)
+    for (const std::string& r : sep->results())
+      if (r != "true" && r != "1" && !r.empty())
+        bad("--separation",
+            "no value (a flag; --train-length, --braking set the check); got '" + r + "'");
   if (a.service_train_length != nullptr && a.service_train_length->count() > 0 &&
       !a.service.separation)
     bad("--train-length", "--separation (the train length is the separation check's)");
@@ -194,8 +203,51 @@ void add_fleet_options(CLI::App* cmd, TimetableArgs& a) {
   cmd->add_flag("--full-report", a.full_report, "print the solver's full report");
   add_service_options(cmd, a.service);
   a.service_train_length = cmd->get_option("--train-length");
+  a.service_separation = cmd->get_option("--separation");
   add_gtfs_options(cmd, a.gtfs);
 }
 
+fleet::TimetableStudy make_study(const TimetableArgs& a) {
+  fleet::TimetableStudySetup setup;
+  setup.problem = fleet_problem(a);
+  setup.model = model_options(a);
+  std::vector<OutputTarget> targets = {{"--json", a.json, false},
+                                       {"--csv", a.csv, false},
+                                       {"--xlsx", a.xlsx, false},
+                                       {"--diagram", a.diagram, true},
+                                       {"--power-plot", a.power_plot, true},
+                                       {"--voltage-plot", a.voltage_plot, true}};
+  const std::vector<OutputTarget> gtfs = gtfs_targets(a.gtfs);
+  targets.insert(targets.end(), gtfs.begin(), gtfs.end());  // no GTFS file is another's path
+  check_output_targets(targets);
+  check_service_args(a.service);
+  if (!a.voltage_plot.empty() && a.model != "network")
+    bad("--voltage-plot", "--model network (only the network model has line voltages)");
+  Problem p = load_fleet_problem(a.problem);
+  const std::string from = a.problem.from.empty() ? p.line.stations.front().name : a.problem.from;
+  const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;
+  setup.stops = data::stops_between(p.line, from, to);
+  if (setup.stops.size() < 2) bad("--to", "a station other than --from");
+  setup.line = std::move(p.line);
+  setup.train = std::move(p.train);
+  setup.engine = engine_options(a.problem);
+  setup.dwell_s = a.dwell_s;
+  try {
+    return fleet::TimetableStudy(setup);
+  } catch (const dp::InfeasibleTimeError& e) {
+    bad("--trip-time", "a trip time that leaves at least the flat-out running time of " +
+                           data::format_number(e.minimum_s()) + " s after the dwells");
+  } catch (const dp::ResourceLimitError& e) {
+    bad("--step", std::string("a grid that fits this machine: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    // Options that do not fit the run: a section boundary or the supply beyond its end.
+    const std::string what = e.what();
+    if (what.rfind("section_boundaries_m: ", 0) == 0) bad("--sections-at", what.substr(22));
+    if (what.rfind("power_supply: ", 0) == 0)
+      throw data::InputError(a.power_supply, 0, "position", what.substr(14));
+    throw;
+  }
+  return fleet::TimetableStudy(setup);  // not reached: every catch above throws
+}
 
 }  // namespace ecorail::cli

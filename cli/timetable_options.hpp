@@ -13,6 +13,7 @@
 #include "cli/service_options.hpp"
 #include "energy/model_options.hpp"
 #include "fleet/fleet_problem.hpp"
+#include "fleet/timetable_study.hpp"
 
 namespace ecorail::cli {
 
@@ -52,6 +53,7 @@ struct TimetableArgs {
   double voltage_at_s = 3600.0;
   CLI::Option* overlap_option = nullptr;        // whether --overlap was given
   CLI::Option* service_train_length = nullptr;  // whether --train-length was given
+  CLI::Option* service_separation = nullptr;    // --separation's raw values
   CLI::Option* step_option = nullptr;  // whether --step was given (the network's default differs)
   OutputOptions gtfs;                  // --gtfs DIR, --gtfs-start (its other fields unused)
 };
@@ -65,5 +67,8 @@ energy::EnergyModelOptions model_options(const TimetableArgs& a);
 // Departures from --headways FILE, --departures FILE, --nearest or uniform.
 std::vector<int> read_departures(const TimetableArgs& a, const fleet::FleetProblem& p);
 void add_fleet_options(CLI::App* cmd, TimetableArgs& a);
+// Checks the outputs and the flags, loads the line and train, and builds the study (section
+// library, pattern, model); a trip time or option that does not fit the run is an InputError.
+fleet::TimetableStudy make_study(const TimetableArgs& a);
 
 }  // namespace ecorail::cli

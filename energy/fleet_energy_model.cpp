@@ -1,7 +1,11 @@
 #include "energy/fleet_energy_model.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
+
+#include "dp/resource_estimate.hpp"
 
 namespace ecorail::energy {
 
@@ -35,7 +39,9 @@ std::unique_ptr<FleetEnergyModel> FleetEnergyModel::on_grid(double step_s) const
   return rebuilt(trip_, limits_, o);
 }
 
-std::unique_ptr<FleetBalance> FleetEnergyModel::make_balance(int) const { return nullptr; }
+std::unique_ptr<FleetBalance> FleetEnergyModel::make_balance(int) const {
+  return nullptr;
+}
 
 std::optional<HeadwayDecomposition> FleetEnergyModel::headway_decomposition() const {
   return std::nullopt;
@@ -53,7 +59,9 @@ std::vector<double> FleetEnergyModel::two_train_values_J(int lo_s, int hi_s, int
   return out;
 }
 
-FleetLowerBound FleetEnergyModel::lower_bound() const { return {}; }
+FleetLowerBound FleetEnergyModel::lower_bound() const {
+  return {};
+}
 
 double FleetEnergyModel::gap_fraction(const FleetEvaluation& result,
                                       const FleetLowerBound& bound) const {
@@ -64,7 +72,9 @@ double FleetEnergyModel::gap_fraction(const FleetEvaluation& result,
   return (substation + curtailed - bound.substation_J) / substation;
 }
 
-double FleetEnergyModel::pair_sum_J(const std::vector<int>&) const { return 0.0; }
+double FleetEnergyModel::pair_sum_J(const std::vector<int>&) const {
+  return 0.0;
+}
 
 std::optional<double> FleetEnergyModel::substation_without_reuse_J(const std::vector<int>&) const {
   return std::nullopt;
@@ -104,6 +114,26 @@ std::unique_ptr<TripPricer> FleetEnergyModel::make_trip_pricer(const std::vector
 void FleetEnergyModel::check_departures(const std::vector<int>& departures_s) const {
   const std::string why = limits_.departures_problem(departures_s);
   if (!why.empty()) throw std::invalid_argument(why);
+}
+
+double FleetEnergyModel::horizon_bins() const {
+  return std::ceil(horizon_s() * options_.ticks_per_second());
+}
+
+double FleetEnergyModel::trip_bins() const {
+  return std::ceil((trip_.arrival_s() + 1.0) * options_.ticks_per_second());
+}
+
+void FleetEnergyModel::check_memory(double bytes, const std::string& what) const {
+  // A quarter: the searches hold a balance per thread beside the trip's own bins.
+  const double limit = 0.25 * dp::memory_limit_bytes();
+  if (bytes <= limit) return;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "%s on a %g s grid needs about %.1f GB, more than a quarter of the %.1f GB "
+                "this process can have: a coarser time step",
+                what.c_str(), options_.time_step_s, bytes / 1e9, 4.0 * limit / 1e9);
+  throw dp::ResourceLimitError(buf);
 }
 
 }  // namespace ecorail::energy

@@ -97,11 +97,11 @@ struct SearchPlan {
   long draw_offset = 0;          // first move counter of the annealing's proposals
   int temperature_samples = 64;  // proposals priced to set the start temperature
   bool samples_within_move_window = false;
-  long time_check_every = 1024;  // moves between clock reads (a power of two)
+  long time_check_every = 1024;             // moves between clock reads (a power of two)
   double anneal_share_of_time_limit = 0.8;  // the rest is the polish's
   bool run_without_restarts = false;        // restarts 0: one run of no moves per start
   bool two_train_values_on_search_grid = false;
-  bool price_starts = true;  // report the best start's used energy
+  bool price_starts = true;      // report the best start's used energy
   bool polish_every_run = true;  // else only the best annealed timetable
   struct Polish {
     // Grid: the larger of this step and the model's (0: the model's; < 0: the annealing's).
@@ -180,6 +180,12 @@ class FleetEnergyModel {
  protected:
   // std::invalid_argument unless the departures keep the limits.
   void check_departures(const std::vector<int>& departures_s) const;
+  // Bins of the time grid from the first departure to the horizon, and of one trip.
+  double horizon_bins() const;
+  double trip_bins() const;
+  // dp::ResourceLimitError, before anything is allocated, when `bytes` exceed a quarter of the
+  // memory this process can have (dp/resource_estimate.hpp): a finer --step than the machine holds.
+  void check_memory(double bytes, const std::string& what) const;
 
  private:
   physics::Trip trip_;

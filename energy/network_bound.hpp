@@ -18,9 +18,9 @@
 // and bin for that.
 #pragma once
 
-#include "power/power_supply.hpp"
 #include "energy/model_options.hpp"
 #include "power/network_profile.hpp"
+#include "power/power_supply.hpp"
 
 namespace ecorail::energy {
 

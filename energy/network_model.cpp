@@ -77,12 +77,15 @@ NetworkModel::NetworkModel(const physics::Trip& trip, const FleetLimits& limits,
     : FleetEnergyModel(trip, limits, options) {
   if (!options.power_supply)
     throw std::invalid_argument("power_supply: the network model needs a power supply");
+  // The profile's four numbers per bin of the trip and the balance's account per bin of the day.
+  check_memory(trip_bins() * 4.0 * 8.0 + horizon_bins() * (4.0 * 8.0 + 1.0),
+               "the network balance of " + std::to_string(limits.trains) + " trains");
   profile_ = std::make_unique<power::NetworkProfile>(trip, options.ticks_per_second());
 }
 
 power::NetworkSetup NetworkModel::network_setup(int threads) const {
-  return {profile_.get(), options().power_supply.get(), options().traction_efficiency,
-          horizon_s(), threads};
+  return {profile_.get(), options().power_supply.get(), options().traction_efficiency, horizon_s(),
+          threads};
 }
 
 FleetEvaluation NetworkModel::evaluate(const std::vector<int>& departures_s) const {

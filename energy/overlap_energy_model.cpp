@@ -22,8 +22,7 @@ FleetEvaluation OverlapEnergyModel::evaluate(const std::vector<int>& departures_
 }
 
 std::unique_ptr<FleetEnergyModel> OverlapEnergyModel::rebuilt(
-    const physics::Trip& trip, const FleetLimits& limits,
-    const EnergyModelOptions& options) const {
+    const physics::Trip& trip, const FleetLimits& limits, const EnergyModelOptions& options) const {
   return std::make_unique<OverlapEnergyModel>(trip, limits, options);
 }
 

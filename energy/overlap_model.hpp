@@ -13,9 +13,9 @@
 
 #include <vector>
 
-#include "physics/trip.hpp"
 #include "energy/fleet_energy.hpp"
 #include "energy/model_options.hpp"
+#include "physics/trip.hpp"
 
 namespace ecorail::energy {
 

@@ -1,9 +1,9 @@
-// A certificate for the power-flow and sections models (energy/power_flow_model.hpp): an upper bound on the regenerated
-// energy any timetable of the problem can use. In a bin, min(sum_i R_i, sum_j T_j) <=
-// sum_i sum_j min(R_i, T_j) (min is subadditive in each argument), so the used energy is at most
-// the trains' self terms plus, for every pair of trains, P(t_j - t_i): what two trains that far
-// apart could exchange if nobody else drew or fed power. The pair sum is then maximised over
-// all timetables, relaxed so that it is exact to compute: pairs one and two headways apart are
+// A certificate for the power-flow and sections models (energy/power_flow_model.hpp): an upper
+// bound on the regenerated energy any timetable of the problem can use. In a bin, min(sum_i R_i,
+// sum_j T_j) <= sum_i sum_j min(R_i, T_j) (min is subadditive in each argument), so the used energy
+// is at most the trains' self terms plus, for every pair of trains, P(t_j - t_i): what two trains
+// that far apart could exchange if nobody else drew or fed power. The pair sum is then maximised
+// over all timetables, relaxed so that it is exact to compute: pairs one and two headways apart are
 // counted exactly in a chain over consecutive headways, pairs further apart by the most they
 // could exchange given the two headways known, and the fixed sum of headways is priced by a
 // Lagrange multiplier mu (every mu gives a valid bound; the best is searched). The bound is

@@ -1,11 +1,12 @@
 // PowerBalance: the power-flow model's instantaneous power balance of a fleet on one time grid
-// (power-flow and sections models; the DC network's load flow is power/network_balance.hpp). Every supply section holds, per bin, the traction and regenerated energy of
-// all trains in it; the regenerated energy used in a bin is min(regenerated, traction) of its
-// section, and the substation supplies traction less that. Trains are placed at whole-second
-// departures and can be moved one at a time: a move touches only the bins of the moved train's
-// profile, and every total is an integer (micro-joules), so any sequence of moves gives exactly
-// the totals of a fresh evaluation. Inside a bin the powers are the bin's means, so a coarse
-// grid overstates simultaneity; docs/fleet.md shows how the used energy converges with the step.
+// (power-flow and sections models; the DC network's load flow is power/network_balance.hpp). Every
+// supply section holds, per bin, the traction and regenerated energy of all trains in it; the
+// regenerated energy used in a bin is min(regenerated, traction) of its section, and the substation
+// supplies traction less that. Trains are placed at whole-second departures and can be moved one at
+// a time: a move touches only the bins of the moved train's profile, and every total is an integer
+// (micro-joules), so any sequence of moves gives exactly the totals of a fresh evaluation. Inside a
+// bin the powers are the bin's means, so a coarse grid overstates simultaneity; docs/fleet.md shows
+// how the used energy converges with the step.
 #pragma once
 
 #include <vector>

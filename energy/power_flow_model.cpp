@@ -80,7 +80,14 @@ class PowerFlowPricer : public TripPricer {
 
 PowerFlowModel::PowerFlowModel(const physics::Trip& trip, const FleetLimits& limits,
                                const EnergyModelOptions& options)
-    : FleetEnergyModel(trip, limits, options), profile_(make_profile(trip, options)) {}
+    : FleetEnergyModel(trip, limits, options) {
+  // The profile's bins (at most one per bin of the trip) and the balance's traction and regen
+  // per section and bin of the day.
+  const double sections = static_cast<double>(options.section_boundaries_m.size()) + 1.0;
+  check_memory(trip_bins() * sizeof(PowerBin) + 2.0 * sections * horizon_bins() * 8.0,
+               "the power balance of " + std::to_string(limits.trains) + " trains");
+  profile_ = make_profile(trip, options);
+}
 
 std::unique_ptr<PowerBalance> PowerFlowModel::make_power_balance() const {
   return make_power_balance(std::vector<const PowerProfile*>(limits().trains, profile_.get()));

@@ -31,8 +31,7 @@ class PowerFlowModel : public FleetEnergyModel {
   // An empty power balance for every train (on this model's profile, or on one profile per
   // train kept alive by the caller).
   std::unique_ptr<PowerBalance> make_power_balance() const;
-  std::unique_ptr<PowerBalance> make_power_balance(
-      std::vector<const PowerProfile*> profiles) const;
+  std::unique_ptr<PowerBalance> make_power_balance(std::vector<const PowerProfile*> profiles) const;
   // The account of a balance already laid out (e.g. with per-train profiles).
   FleetEvaluation evaluation_of(const PowerBalance& balance) const;
 

@@ -1,11 +1,11 @@
 // PowerProfile: one train's power on the time grid of the power-flow and sections models (the
-// balance of regenerated and traction power per time bin; not the DC load flow of power/), ready to be laid at any whole-second
-// departure. Built once from a trip that departs at 0: the trip's exact power bins (each bin the
-// integral of the power over it, physics::Trip::power_bins) are stored as integers (micro-joules
-// per bin) in a sparse list of the bins where the train draws traction or feeds regenerated
-// power. Integer energies make every sum in the fleet exact, so moving a train a million times
-// leaves the same totals as a fresh evaluation. Because departures are whole seconds and the
-// step divides a second, a departure shifts the profile by a whole number of bins: no
+// balance of regenerated and traction power per time bin; not the DC load flow of power/), ready to
+// be laid at any whole-second departure. Built once from a trip that departs at 0: the trip's exact
+// power bins (each bin the integral of the power over it, physics::Trip::power_bins) are stored as
+// integers (micro-joules per bin) in a sparse list of the bins where the train draws traction or
+// feeds regenerated power. Integer energies make every sum in the fleet exact, so moving a train a
+// million times leaves the same totals as a fresh evaluation. Because departures are whole seconds
+// and the step divides a second, a departure shifts the profile by a whole number of bins: no
 // re-binning, no re-simulation. A profile also knows, per bin, the supply section the train is
 // in (by its position at the bin's middle), for the sections model.
 #pragma once

@@ -31,7 +31,7 @@ struct FleetProblem {
   double trip_time_s = 2086.0;  // running times plus dwells, first departure to last arrival
   double dwell_min_s = 30.0;
   double dwell_max_s = 45.0;
-  // Clock-dependent headway classes (question 2.2, timetable/windowed_classes.hpp): a headway
+  // Clock-dependent headway classes (question 2.2, fleet/windowed_classes.hpp): a headway
   // whose open interval (t_k, t_k+1) overlaps a peak window lies in the peak range instead of
   // [headway_min_s, headway_max_s] (then the off-peak range). Empty: one class, as in 2.1.
   std::vector<PeakWindow> peak_windows;

@@ -41,7 +41,9 @@ bool allowed(const FleetProblem& p, const std::vector<int>& t, int k, int d) {
 }
 
 // The headway values of a table over [any min, any max] for both classes of a windowed problem.
-WindowedValue both_classes(const std::vector<double>& value) { return {value, value}; }
+WindowedValue both_classes(const std::vector<double>& value) {
+  return {value, value};
+}
 
 bool past(Clock::time_point t0, double limit_s) {
   return limit_s > 0.0 && seconds_since(t0) > limit_s;
@@ -68,8 +70,7 @@ HeadwayOptimiserResult solve_decomposed(const FleetEnergyModel& model, const Fle
         for (int b = 0; b < m; ++b)
           penalty[static_cast<std::size_t>(a) * m + b] = d.penalty_J(lo + a, lo + b);
       choice = maximise_windowed_chain(p, both_classes(value), penalty);
-      s.method =
-          "exact windowed chain DP over (train, clock time, last headway) (" + d.what + ")";
+      s.method = "exact windowed chain DP over (train, clock time, last headway) (" + d.what + ")";
     }
   } else {
     const int lo = p.headway_min_s, m = p.headway_max_s - lo + 1;
@@ -349,7 +350,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   report("starts", s.start_used_J, NAN);
 
   // Annealing: every start, restarts times; the model's share of the time limit.
-  const int per_start = plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
+  const int per_start =
+      plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
   const long moves = options.restarts == 0 ? 0 : options.moves_per_run;
   const int runs = static_cast<int>(starts.size()) * per_start;
   const double anneal_limit = plan.anneal_share_of_time_limit * options.time_limit_s;
@@ -400,8 +402,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       const int window = stage.window_s < 0 ? options.polish_window_s
                                             : std::min(stage.window_s, options.polish_window_s);
       const std::unique_ptr<FleetBalance> balance = grid.make_balance(balance_threads);
-      polish_moves[c] += polish(*balance, p, candidates[c], window, stage.sweeps, t0,
-                                options.time_limit_s, &stop);
+      polish_moves[c] +=
+          polish(*balance, p, candidates[c], window, stage.sweeps, t0, options.time_limit_s, &stop);
       polished[c] = balance->substation();
     }
     stopped[c] = stop;

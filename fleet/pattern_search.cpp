@@ -138,7 +138,9 @@ bool PatternSearchOptions::IsValid(std::string* error) const {
   return true;
 }
 
-double used_regen_of(const FleetEvaluation& e) { return e.used_regen_J(); }
+double used_regen_of(const FleetEvaluation& e) {
+  return e.used_regen_J();
+}
 
 std::unique_ptr<energy::FleetEnergyModel> make_model(const physics::Trip& trip,
                                                      const FleetProblem& problem,
@@ -184,7 +186,8 @@ std::string PatternSearchResult::BriefReport() const {
 
 PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const FleetProblem& problem,
                                      const energy::EnergyModelOptions& model,
-                                     const PatternTrip& start, const PatternSearchOptions& options) {
+                                     const PatternTrip& start,
+                                     const PatternSearchOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const std::unique_ptr<energy::FleetEnergyModel> start_model =
@@ -259,7 +262,8 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
     cache.fetch(best);
     out.pattern.pattern = best;
     out.pattern.trip = cache.trip(best);
-    const std::unique_ptr<energy::FleetEnergyModel> models = start_model->with_trip(out.pattern.trip);
+    const std::unique_ptr<energy::FleetEnergyModel> models =
+        start_model->with_trip(out.pattern.trip);
     out.timetable = optimise_headways(*models, problem, options.headways);
     const FleetEvaluation kept = models->evaluate(departures);
     if (kept.total.substation_J() < out.timetable.evaluation.total.substation_J()) {

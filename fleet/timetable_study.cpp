@@ -1,5 +1,7 @@
 #include "fleet/timetable_study.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "data/route_builder.hpp"
@@ -8,28 +10,29 @@
 
 namespace ecorail::fleet {
 
-std::string run_problem(const energy::EnergyModelOptions& o, double length_m, std::string* field) {
+std::string run_problem(const energy::EnergyModelOptions& o, double length_m, double line_length_m,
+                        std::string* field) {
   auto m = [](double x) { return std::to_string(static_cast<long long>(std::llround(x))); };
   for (double b : o.section_boundaries_m) {
     if (b >= length_m) {
       if (field) *field = "section_boundaries_m";
-      return "supply-section boundaries inside the run (0 to " + m(length_m) + " m); got " +
-             m(b) + " m";
+      return "supply-section boundaries inside the run (0 to " + m(length_m) + " m); got " + m(b) +
+             " m";
     }
   }
   if (o.power_supply) {
     for (const power::Substation& s : o.power_supply->substations) {
-      if (s.position_m < 0.0 || s.position_m > length_m) {
+      if (s.position_m < 0.0 || s.position_m > line_length_m) {
         if (field) *field = "power_supply";
         return "substation '" + s.name + "' at " + m(s.position_m) +
-               " m: expected a position on the run (0 to " + m(length_m) + " m)";
+               " m: expected a position on the line (0 to " + m(line_length_m) + " m)";
       }
     }
     for (const power::ConductorSegment& c : o.power_supply->conductors) {
-      if (c.from_m < 0.0 || c.from_m >= length_m) {
+      if (c.from_m < 0.0 || c.from_m >= line_length_m) {
         if (field) *field = "power_supply";
-        return "conductor segment from " + m(c.from_m) +
-               " m: expected a start on the run (0 to " + m(length_m) + " m)";
+        return "conductor segment from " + m(c.from_m) + " m: expected a start on the line (0 to " +
+               m(line_length_m) + " m)";
       }
     }
   }
@@ -55,7 +58,13 @@ TimetableStudy::TimetableStudy(const TimetableStudySetup& setup)
   for (std::size_t i = 0; i < library_->size(); ++i)
     positions_m_.push_back(pos += library_->route(i).length_m());
   std::string field;
-  why = run_problem(model_options_, run_length_m(), &field);
+  double lo = 0.0, hi = 0.0;
+  for (std::size_t i = 0; i < setup.line.stations.size(); ++i) {
+    const double k = setup.line.stations[i].km_post_m;
+    lo = i == 0 ? k : std::min(lo, k);
+    hi = i == 0 ? k : std::max(hi, k);
+  }
+  why = run_problem(model_options_, run_length_m(), hi - lo, &field);
   if (!why.empty()) throw std::invalid_argument(field + ": " + why);
   const std::vector<double> dwells(stops_.size() - 2, setup.dwell_s);
   dp::JourneyOptions journey;
@@ -119,8 +128,9 @@ bool TimetableStudy::has_network() const {
 energy::PowerBalance::Trace TimetableStudy::power_trace(const std::vector<int>& departures_s,
                                                         double from_s, double to_s) const {
   const auto* flow = dynamic_cast<const energy::PowerFlowModel*>(model_.get());
-  if (!flow) throw std::invalid_argument("the " + std::string(model_->name()) +
-                                         " model has no power-flow trace");
+  if (!flow)
+    throw std::invalid_argument("the " + std::string(model_->name()) +
+                                " model has no power-flow trace");
   // Per-train patterns: each train's own profile (kept alive here while the trace is made).
   std::vector<std::unique_ptr<energy::PowerProfile>> own;
   std::vector<const energy::PowerProfile*> profiles;

@@ -106,10 +106,12 @@ class TimetableStudy {
   std::unique_ptr<energy::FleetEnergyModel> model_;
 };
 
-// Why the model options do not fit a run of run_length_m ("" when they do): a supply-section
-// boundary at or beyond the run's end, a substation or a conductor segment beyond it. *field
-// names the option: "section_boundaries_m" or "power_supply".
+// Why the model options do not fit a run of run_length_m on a line of line_length_m ("" when
+// they do): a supply-section boundary at or beyond the run's end, a substation or the start of
+// a conductor segment beyond the line's end (supply positions are along the run from its first
+// station; the supply may extend past the run, not past the line). *field names the option:
+// "section_boundaries_m" or "power_supply".
 std::string run_problem(const energy::EnergyModelOptions& options, double run_length_m,
-                        std::string* field);
+                        double line_length_m, std::string* field);
 
 }  // namespace ecorail::fleet

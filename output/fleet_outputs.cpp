@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "output/quiet_stderr.hpp"
 #include "fleet/windowed_classes.hpp"
+#include "output/quiet_stderr.hpp"
 
 namespace ecorail::output {
 
@@ -92,8 +92,7 @@ void write_timetable_xlsx(const std::filesystem::path& file, const FleetTimetabl
                              lxw_strerror(closed));
 }
 
-nlohmann::json fleet_energy_json(const energy::FleetEvaluation& ev,
-                                 const fleet::FleetProblem& p) {
+nlohmann::json fleet_energy_json(const energy::FleetEvaluation& ev, const fleet::FleetProblem& p) {
   nlohmann::json j;
   j["model"] = ev.model;
   if (!ev.overlap_variant.empty()) j["overlap_variant"] = ev.overlap_variant;

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "energy/fleet_energy_model.hpp"
+#include "energy/power_flow_balance.hpp"
+#include "fleet/fleet_problem.hpp"
 #include "output/gnuplot.hpp"
 #include "physics/trip.hpp"
 #include "power/load_flow.hpp"
-#include "energy/fleet_energy_model.hpp"
-#include "fleet/fleet_problem.hpp"
 #include "power/network_evaluation.hpp"
-#include "energy/power_flow_balance.hpp"
 
 namespace ecorail::output {
 
@@ -26,7 +26,7 @@ struct FleetTimetable {
   std::vector<std::string> stations;  // in the order of travel
   std::vector<double> positions_m;    // along the run
   std::vector<int> departures_s;
-  physics::Trip trip;                               // the pattern, departing at 0
+  physics::Trip trip;                           // the pattern, departing at 0
   std::vector<fleet::PeakWindow> peak_windows;  // shaded on the train diagram
   // Per-train patterns: train k's own trip (departing at 0); empty when all run `trip`.
   std::vector<physics::Trip> per_train_trips;

@@ -1,7 +1,7 @@
 // GTFS export of timetables: stops.txt, routes.txt, trips.txt and stop_times.txt from plain
 // rows (train, station, arrival, departure in seconds past the service day's start), so any
 // timetable the program makes can be written: a journey now (gtfs_rows_of_journey), the fleet
-// timetables (timetable/) later by building the same rows. Times are HH:MM:SS, hours past 24
+// timetables (fleet/) later by building the same rows. Times are HH:MM:SS, hours past 24
 // allowed as GTFS wants for trips running past midnight; they are rounded to the second with one
 // rounding for arrival and departure, so the order of a trip's times is kept. A trip's rows are
 // sorted by arrival and numbered 1, 2, ... (stop_sequence). The files are written through an

@@ -35,14 +35,13 @@ void add_study(nlohmann::json& energy, const fleet::TimetableStudy& study,
 nlohmann::json pattern_search_json(const fleet::PatternSearchResult& r) {
   const auto& before = r.headways_only.total;
   const auto& after = r.timetable.evaluation.total;
-  nlohmann::json j = {
-      {"moves_accepted", r.moves_accepted},
-      {"patterns_evaluated", r.patterns_evaluated},
-      {"headways_only_substation_energy_kJ", before.substation_J() / 1e3},
-      {"headways_only_traction_energy_kJ", before.traction_J / 1e3},
-      {"headways_only_used_regen_kJ", r.headways_only.used_regen_J() / 1e3},
-      {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
-      {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
+  nlohmann::json j = {{"moves_accepted", r.moves_accepted},
+                      {"patterns_evaluated", r.patterns_evaluated},
+                      {"headways_only_substation_energy_kJ", before.substation_J() / 1e3},
+                      {"headways_only_traction_energy_kJ", before.traction_J / 1e3},
+                      {"headways_only_used_regen_kJ", r.headways_only.used_regen_J() / 1e3},
+                      {"retiming_saving_kJ", (before.substation_J() - after.substation_J()) / 1e3},
+                      {"retiming_traction_cost_kJ", (after.traction_J - before.traction_J) / 1e3}};
   if (!r.per_train.empty()) {
     const auto& common = r.common_pattern.total;
     j["per_train_patterns"] = true;

@@ -37,10 +37,9 @@ NetworkBalance::NetworkBalance(const NetworkProfile& profile, const PowerSupply&
   flow_ = std::make_unique<LoadFlow>(supply_);
 }
 
-NetworkBinEnergy NetworkBalance::solve_bin(long bin, LoadFlow& flow,
-                                           LoadFlowResult& r,
-                                           std::vector<TrainLoad>& loads,
-                                           std::vector<int>& ids, bool* solved) const {
+NetworkBinEnergy NetworkBalance::solve_bin(long bin, LoadFlow& flow, LoadFlowResult& r,
+                                           std::vector<TrainLoad>& loads, std::vector<int>& ids,
+                                           bool* solved) const {
   loads.clear();
   ids.clear();
   profile_->loads_at(bin, sorted_base_.data(), sorted_train_.data(), trains(), traction_efficiency_,

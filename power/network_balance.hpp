@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "power/load_flow.hpp"
-#include "power/network_profile.hpp"
 #include "power/micro_joules.hpp"
+#include "power/network_profile.hpp"
 
 namespace ecorail::power {
 

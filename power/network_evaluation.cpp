@@ -199,8 +199,8 @@ SubstationTrace substation_trace(const NetworkSetup& s, const std::vector<int>& 
   return t;
 }
 
-LoadFlowResult load_flow_at(const NetworkSetup& s, const std::vector<int>& departures_s,
-                                   double t_s, std::vector<int>* trains) {
+LoadFlowResult load_flow_at(const NetworkSetup& s, const std::vector<int>& departures_s, double t_s,
+                            std::vector<int>* trains) {
   const Placement p = place(s, departures_s);
   const long b = static_cast<long>(std::floor(t_s * s.profile->ticks_per_second()));
   LoadFlow flow(*s.supply);

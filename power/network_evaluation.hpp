@@ -76,6 +76,6 @@ SubstationTrace substation_trace(const NetworkSetup& setup, const std::vector<in
 // The load flow at clock time t_s (the bin holding it), with its nodes along the line; trains
 // receives the train number of each load.
 LoadFlowResult load_flow_at(const NetworkSetup& setup, const std::vector<int>& departures_s,
-                                   double t_s, std::vector<int>* trains);
+                            double t_s, std::vector<int>* trains);
 
 }  // namespace ecorail::power

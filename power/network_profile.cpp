@@ -29,8 +29,7 @@ NetworkProfile::NetworkProfile(const physics::Trip& trip, int ticks_per_second)
 
 void NetworkProfile::loads_at(long bin, const long* base, const int* train_of, int count,
                               double traction_efficiency, double auxiliary_W,
-                              std::vector<TrainLoad>& loads,
-                              std::vector<int>& trains) const {
+                              std::vector<TrainLoad>& loads, std::vector<int>& trains) const {
   const long span = span_bins();
   const long* first = std::lower_bound(base, base + count, bin - span + 1);
   for (const long* b = first; b != base + count && *b <= bin; ++b) {

@@ -1,5 +1,5 @@
 // NetworkProfile: one train's trip on the network model's time grid. Where the power-flow
-// profile (power_profile.hpp) needs only the energy in each bin, the network model also needs
+// profile (energy/power_flow_profile.hpp) needs only the energy in each bin, the network model also needs
 // where the train is: per bin from the departure to the arrival, the position at the bin's
 // middle, the mean traction power at the wheel and the mean regenerated power (the trip's exact
 // power bins divided by the step), and the fraction of the bin the train is on the line (1 but
@@ -36,8 +36,8 @@ class NetworkProfile {
   // The loads at `bin` of the trains whose first bins are base_bins[0..count) (ascending),
   // train_of[i] naming each; appends to loads (and their train numbers to trains).
   void loads_at(long bin, const long* base_bins, const int* train_of, int count,
-                double traction_efficiency, double auxiliary_W,
-                std::vector<TrainLoad>& loads, std::vector<int>& trains) const;
+                double traction_efficiency, double auxiliary_W, std::vector<TrainLoad>& loads,
+                std::vector<int>& trains) const;
 
  private:
   int ticks_per_second_ = 1;

@@ -9,8 +9,8 @@
 #include <memory>
 
 #include "dp/time_target.hpp"
-#include "service/service_simulator.hpp"
 #include "fleet/fleet_pattern.hpp"
+#include "service/service_simulator.hpp"
 
 namespace ecorail::recovery {
 

@@ -12,8 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "service/separation.hpp"
 #include "fleet/fleet_pattern.hpp"
+#include "service/separation.hpp"
 
 namespace ecorail::recovery {
 

@@ -12,16 +12,17 @@
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "dp/section_library.hpp"
-#include "fleet/fleet_pattern.hpp"
 #include "energy/model_registry.hpp"
 #include "energy/network_bound.hpp"
 #include "energy/network_model.hpp"
-#include "energy/pair_bound.hpp"
 #include "energy/overlap_energy_model.hpp"
+#include "energy/pair_bound.hpp"
 #include "energy/power_flow_model.hpp"
+#include "fleet/fleet_pattern.hpp"
 #include "fleet/fleet_problem.hpp"
 #include "fleet/headway_optimiser.hpp"
 #include "fleet/pattern_search.hpp"
+#include "power/network_balance.hpp"
 
 namespace ecorail::fleet {
 
@@ -31,14 +32,15 @@ using energy::FleetEvaluation;
 using energy::kNetworkTimeStep_s;
 using energy::make_profile;
 using energy::MicroJoules;
+using energy::network_substation_bound;
+using energy::NetworkBound;
+using energy::OverlapModel;
 using energy::OverlapVariant;
 using energy::PairBound;
 using energy::PowerBalance;
 using energy::PowerProfile;
 using energy::to_joules;
 using energy::used_regen_bound;
-using energy::network_substation_bound;
-using energy::NetworkBound;
 using power::evaluate_network;
 using power::NetworkBalance;
 using power::NetworkProfile;

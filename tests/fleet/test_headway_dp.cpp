@@ -6,10 +6,10 @@
 #include <functional>
 #include <random>
 
-#include "fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
 #include "fleet/headway_dp.hpp"
 #include "fleet/headway_optimiser.hpp"
+#include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <functional>
 
-#include "fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
-#include "fleet/headway_optimiser.hpp"
 #include "energy/pair_bound.hpp"
+#include "fleet/headway_optimiser.hpp"
+#include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {
@@ -45,7 +45,7 @@ TEST(PairBound, NeverBelowTheBruteForceOptimumAndTheOptimiserReachesIt) {
     opt.moves_per_run = 2000;
     opt.polish_window_s = 60;
     const HeadwayOptimiserResult r = optimise_headways(models, opt);
-    EXPECT_NEAR(r.summary.used_regen_J, best, 1e-9 * best) << model_name(model);
+    EXPECT_NEAR(r.summary.used_regen_J, best, 1e-9 * best) << model;
     EXPECT_GE(r.summary.bound_used_regen_J, r.summary.used_regen_J);
     EXPECT_GT(best, 0.0);
   }

@@ -7,9 +7,9 @@
 
 #include <numeric>
 
-#include "fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
 #include "fleet/pattern_search.hpp"
+#include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {

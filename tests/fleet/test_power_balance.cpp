@@ -6,9 +6,9 @@
 
 #include <random>
 
-#include "fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
 #include "energy/power_flow_balance.hpp"
+#include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {

@@ -18,11 +18,11 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "fleet/search_support.hpp"
 #include "physics/motion.hpp"
 #include "physics/simulator.hpp"
 #include "physics/speed_envelope.hpp"
 #include "physics/units.hpp"
-#include "fleet/search_support.hpp"
 
 namespace ecorail::physics {
 namespace {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <memory>
 
-#include "tests/fleet/fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
 #include "power/network_balance.hpp"
 #include "power/network_evaluation.hpp"
+#include "tests/fleet/fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {
@@ -47,8 +47,7 @@ TEST(NetworkFleet, ZeroResistanceIsThePowerFlowModel) {
   pf.time_step_s = 0.1;
   const auto t = departures();
   const FleetEvaluation a = TestFleet(small_pattern().trip, kFleet, pf).evaluate(t);
-  const FleetEvaluation b =
-      TestFleet(small_pattern().trip, kFleet, network(0.0, 0.0)).evaluate(t);
+  const FleetEvaluation b = TestFleet(small_pattern().trip, kFleet, network(0.0, 0.0)).evaluate(t);
   ASSERT_TRUE(b.network);
   EXPECT_GT(a.total.used_regen_J, 0.0);  // the trains do exchange energy
   EXPECT_NEAR(b.network->substation_J, a.total.substation_J(), 1e-9 * a.total.traction_J);

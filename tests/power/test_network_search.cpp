@@ -1,4 +1,4 @@
-// The network model's searches and bound (timetable/network_bound.hpp, network_optimiser.hpp,
+// The network model's searches and bound (energy/network_bound.hpp, the headway search with the network model,
 // pattern_search.hpp) on the small fleet (the reference train on A6 -> A9): the bound never
 // exceeds the best timetable found by enumerating every timetable of 3- and 4-train fleets
 // (diode supplies with and without auxiliaries, a reversible one, a high-resistance one); with
@@ -14,13 +14,13 @@
 #include <limits>
 #include <memory>
 
-#include "tests/fleet/fleet_fixture.hpp"
 #include "energy/fleet_energy_model.hpp"
-#include "fleet/headway_optimiser.hpp"
-#include "power/network_balance.hpp"
 #include "energy/network_bound.hpp"
 #include "energy/pair_bound.hpp"
+#include "fleet/headway_optimiser.hpp"
 #include "fleet/pattern_search.hpp"
+#include "power/network_balance.hpp"
+#include "tests/fleet/fleet_fixture.hpp"
 
 namespace ecorail::fleet {
 namespace {
@@ -127,7 +127,8 @@ TEST(NetworkBound, ZeroResistanceAndNoAuxiliariesIsThePowerFlowPairBound) {
   // power-flow pair bound of the same trip on the same grid.
   const FleetProblem p = small_fleet(8, 40, 120, 550);
   const NetworkProfile profile(small_pattern().trip, 10);
-  const NetworkBound b = network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, limits_of(p));
+  const NetworkBound b =
+      network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, limits_of(p));
   const PowerProfile pf(small_pattern().trip, 10, {});
   const PairBound pair = used_regen_bound(pf, limits_of(p));
   const double cap = std::min(pair.bound_used_J, p.trains * profile.regen_total_J());

@@ -10,13 +10,13 @@
 #include <cmath>
 #include <map>
 
+#include "energy/power_flow_balance.hpp"
+#include "energy/power_flow_profile.hpp"
+#include "fleet/fleet_pattern.hpp"
 #include "output/section_run_cache.hpp"
 #include "recovery/delay_recovery.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery_fixture.hpp"
-#include "fleet/fleet_pattern.hpp"
-#include "energy/power_flow_balance.hpp"
-#include "energy/power_flow_profile.hpp"
 
 namespace ecorail::recovery {
 namespace {
@@ -108,7 +108,7 @@ TEST(MonteCarlo, ADayWithoutDelaysCostsThePlansEnergyByAnIndependentEvaluation) 
   EXPECT_EQ(r.lateness_sum_s, 0.0);
   EXPECT_EQ(r.knock_on_delays, 0);
   // Independent: every section re-solved for its planned time, each train's whole trip laid in
-  // the fleet's power balance (timetable/, exact bins of the whole trip on the same grid).
+  // the fleet's power balance (energy/, exact bins of the whole trip on the same grid).
   const dp::SectionLibrary& lib = small_library();
   std::vector<dp::SectionTimeSolve> solves;
   for (std::size_t j = 0; j < lib.size(); ++j)
