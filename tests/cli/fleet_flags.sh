@@ -15,8 +15,8 @@ small=(--from A6 --to A9 --trains 6 --span 1000 --headway 150:250 --trip-time 48
 sed 's/^position_m = 4706.0/position_m = 50000.0/' "$supply" > far_substation.toml
 expect_error "50000 m" timetable evaluate "${small[@]}" --model network \
   --power-supply far_substation.toml --json out.json
-sed '0,/^from_m = 0.0/s//from_m = 0.0\n\n[[conductors]]\nfrom_m = 99999.0\nconductor_ohm_per_km = 0.008\nreturn_ohm_per_km = 0.015/' \
-  "$supply" > far_conductor.toml
+{ cat "$supply"; printf '\n[[conductors]]\nfrom_m = 99999.0\nconductor_ohm_per_km = 0.008\n'
+  printf 'return_ohm_per_km = 0.015\n'; } > far_conductor.toml
 expect_error "99999 m" timetable evaluate "${small[@]}" --model network \
   --power-supply far_conductor.toml --json out.json
 expect_error "--sections-at" timetable evaluate --quiet --model sections --sections-at 30000 \
