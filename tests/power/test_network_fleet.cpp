@@ -15,6 +15,8 @@
 namespace ecorail::fleet {
 namespace {
 
+using power::NetworkEvaluation;
+
 using testing::small_fleet;
 using testing::small_pattern;
 
