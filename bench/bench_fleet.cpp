@@ -10,56 +10,64 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
 
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "energy/fleet_energy_model.hpp"
+#include "energy/network_bound.hpp"
+#include "energy/network_model.hpp"
+#include "energy/pair_bound.hpp"
+#include "energy/power_flow_model.hpp"
+#include "fleet/fleet_pattern.hpp"
+#include "fleet/headway_optimiser.hpp"
+#include "fleet/pattern_search.hpp"
+#include "power/network_balance.hpp"
+#include "power/network_evaluation.hpp"
 #include "power/supply_loader.hpp"
-#include "timetable/fleet_models.hpp"
-#include "timetable/fleet_pattern.hpp"
-#include "timetable/headway_optimiser.hpp"
-#include "timetable/network_balance.hpp"
-#include "timetable/network_bound.hpp"
-#include "timetable/network_evaluation.hpp"
-#include "timetable/pair_bound.hpp"
 
 namespace {
 
 using namespace ecorail;
 
-const timetable::PatternTrip& pattern() {
-  static const timetable::PatternTrip p = [] {
+const fleet::PatternTrip& pattern() {
+  static const fleet::PatternTrip p = [] {
     const auto line = data::default_line();
     const auto train = data::default_train();
     const auto stops = data::stops_between(line, "A1", "A14");
     const dp::SectionLibrary lib(train, data::build_routes(line, stops, train), {});
     dp::JourneyOptions o;
     o.measure_marginals = false;
-    return timetable::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
+    return fleet::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
   }();
   return p;
 }
 
-const timetable::FleetModels& models(timetable::EnergyModel model,
-                                     timetable::OverlapVariant variant) {
-  static std::map<int, std::unique_ptr<timetable::FleetModels>> cache;
-  auto& slot = cache[static_cast<int>(model) * 2 + static_cast<int>(variant)];
+// The reference fleet's model of that name (and overlap variant), built once.
+const energy::FleetEnergyModel& models(const std::string& model, energy::OverlapVariant variant) {
+  static std::map<std::string, std::unique_ptr<energy::FleetEnergyModel>> cache;
+  auto& slot = cache[model + std::string(energy::overlap_variant_name(variant))];
   if (!slot) {
-    timetable::EnergyModelOptions o;
+    energy::EnergyModelOptions o;
     o.model = model;
     o.overlap = variant;
-    slot = std::make_unique<timetable::FleetModels>(pattern().trip, timetable::FleetProblem{}, o);
+    slot = fleet::make_model(pattern().trip, fleet::FleetProblem{}, o);
   }
   return *slot;
 }
 
+const energy::PowerFlowModel& power_flow() {
+  return dynamic_cast<const energy::PowerFlowModel&>(
+      models("power-flow", energy::OverlapVariant::Ahead));
+}
+
 std::vector<int> uniform() {
-  return timetable::departures_from_headways(timetable::uniform_headways({}));
+  return fleet::departures_from_headways(fleet::uniform_headways({}));
 }
 
 void BM_FullEvaluation(benchmark::State& state) {
-  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
-  auto balance = m.make_balance();
+  auto balance = power_flow().make_power_balance();
   const auto t = uniform();
   for (auto _ : state) {
     balance->place_all(t);  // removes the previous placement, lays all 100 trains again
@@ -69,8 +77,7 @@ void BM_FullEvaluation(benchmark::State& state) {
 BENCHMARK(BM_FullEvaluation)->Unit(benchmark::kMillisecond);
 
 void BM_IncrementalMove(benchmark::State& state) {
-  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
-  auto balance = m.make_balance();
+  auto balance = power_flow().make_power_balance();
   const auto t = uniform();
   balance->place_all(t);
   int k = 1;
@@ -85,23 +92,22 @@ BENCHMARK(BM_IncrementalMove)->Unit(benchmark::kMicrosecond);
 
 void BM_OverlapExactDp(benchmark::State& state) {
   const auto variant =
-      state.range(0) == 0 ? timetable::OverlapVariant::Ahead : timetable::OverlapVariant::Either;
-  const auto& m = models(timetable::EnergyModel::Overlap, variant);
-  for (auto _ : state) benchmark::DoNotOptimize(timetable::optimise_headways(m, {}));
+      state.range(0) == 0 ? energy::OverlapVariant::Ahead : energy::OverlapVariant::Either;
+  const auto& m = models("overlap", variant);
+  for (auto _ : state) benchmark::DoNotOptimize(fleet::optimise_headways(m, {}, {}));
 }
 BENCHMARK(BM_OverlapExactDp)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_PairBound(benchmark::State& state) {
-  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
   for (auto _ : state)
-    benchmark::DoNotOptimize(timetable::used_regen_bound(m.profile(), m.problem()));
+    benchmark::DoNotOptimize(
+        energy::used_regen_bound(power_flow().profile(), power_flow().limits()));
 }
 BENCHMARK(BM_PairBound)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_PowerFlowOptimisation(benchmark::State& state) {
-  const auto& m = models(timetable::EnergyModel::PowerFlow, timetable::OverlapVariant::Ahead);
   for (auto _ : state) {
-    const auto r = timetable::optimise_headways(m, {});
+    const auto r = fleet::optimise_headways(power_flow(), {}, {});
     state.counters["used_regen_kJ"] = r.summary.used_regen_J / 1e3;
     state.counters["gap_pct"] = 100.0 * r.summary.gap_fraction;
   }
@@ -114,18 +120,19 @@ BENCHMARK(BM_PowerFlowOptimisation)->Unit(benchmark::kSecond)->Iterations(1);
 // each a DC load flow with the example supply data/contest/power_supply.toml) evaluated in
 // full on all threads (Arg: thread count), and one incremental move of one train and back
 // (each re-solves the instants of the train's old and new runs, 2 x ~20 900).
-const timetable::FleetModels& network_models() {
-  static const std::unique_ptr<timetable::FleetModels> m = [] {
-    timetable::EnergyModelOptions o;
-    o.model = timetable::EnergyModel::Network;
-    o.time_step_s = timetable::kNetworkTimeStep_s;
+const energy::NetworkModel& network_models() {
+  static const std::unique_ptr<energy::NetworkModel> m = [] {
+    energy::EnergyModelOptions o;
+    o.model = "network";
+    o.time_step_s = energy::kNetworkTimeStep_s;
     // Run from the source tree's root (or next to this file's tree).
     std::filesystem::path file = "data/contest/power_supply.toml";
     if (!std::filesystem::exists(file))
       file = std::filesystem::path(__FILE__).parent_path().parent_path() / file;
     o.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(file.string()));
-    return std::make_unique<timetable::FleetModels>(pattern().trip, timetable::FleetProblem{}, o);
+    return std::make_unique<energy::NetworkModel>(pattern().trip,
+                                                  fleet::limits_of(fleet::FleetProblem{}), o);
   }();
   return *m;
 }
@@ -134,7 +141,7 @@ void BM_NetworkDay(benchmark::State& state) {
   const auto setup = network_models().network_setup(static_cast<int>(state.range(0)));
   const auto t = uniform();
   for (auto _ : state) {
-    const auto e = timetable::evaluate_network(setup, t);
+    const auto e = power::evaluate_network(setup, t);
     benchmark::DoNotOptimize(e.substation_J);
   }
   state.SetItemsProcessed(state.iterations() * 659961);  // instants
@@ -143,7 +150,7 @@ BENCHMARK(BM_NetworkDay)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseReal
 
 void BM_NetworkMove(benchmark::State& state) {
   const auto setup = network_models().network_setup(1);
-  timetable::NetworkBalance balance(*setup.profile, *setup.supply, 1.0, 100, setup.horizon_s, 2);
+  power::NetworkBalance balance(*setup.profile, *setup.supply, 1.0, 100, setup.horizon_s, 2);
   const auto t = uniform();
   balance.place_all(t);
   int k = 1;
@@ -162,8 +169,8 @@ void BM_NetworkPatternScreen(benchmark::State& state) {
   const auto setup = network_models().network_setup(2);
   const auto t = uniform();
   for (auto _ : state) {
-    const timetable::NetworkProfile coarse(pattern().trip, 1);
-    timetable::NetworkBalance balance(coarse, *setup.supply, 1.0, 100, setup.horizon_s, 2);
+    const power::NetworkProfile coarse(pattern().trip, 1);
+    power::NetworkBalance balance(coarse, *setup.supply, 1.0, 100, setup.horizon_s, 2);
     balance.place_all(t);
     benchmark::DoNotOptimize(balance.substation());
   }
@@ -174,8 +181,8 @@ BENCHMARK(BM_NetworkPatternScreen)->Unit(benchmark::kMillisecond)->UseRealTime()
 void BM_NetworkBound(benchmark::State& state) {
   const auto& m = network_models();
   for (auto _ : state) {
-    benchmark::DoNotOptimize(timetable::network_substation_bound(
-        m.network_profile(), *m.options().power_supply, 1.0, m.problem()));
+    benchmark::DoNotOptimize(energy::network_substation_bound(
+        m.network_profile(), *m.options().power_supply, 1.0, m.limits()));
   }
 }
 BENCHMARK(BM_NetworkBound)->Unit(benchmark::kMillisecond);

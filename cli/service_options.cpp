@@ -91,7 +91,7 @@ void check_service_args(const ServiceArgs& a) {
 
 std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
                                               const dp::SectionLibrary& library,
-                                              const timetable::FleetPattern& pattern,
+                                              const fleet::FleetPattern& pattern,
                                               const std::vector<int>& departures_s,
                                               nlohmann::json& energy, data::OutputBatch& batch) {
   if (!a.wanted()) return nullptr;

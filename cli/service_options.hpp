@@ -13,7 +13,7 @@
 
 #include "data/atomic_file.hpp"
 #include "dp/section_library.hpp"
-#include "timetable/fleet_pattern.hpp"
+#include "fleet/fleet_pattern.hpp"
 
 namespace ecorail::cli {
 
@@ -39,7 +39,7 @@ struct ServiceRun;
 // the cap binds, adds energy["separation"], queues the profile outputs in batch.
 std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
                                               const dp::SectionLibrary& library,
-                                              const timetable::FleetPattern& pattern,
+                                              const fleet::FleetPattern& pattern,
                                               const std::vector<int>& departures_s,
                                               nlohmann::json& energy, data::OutputBatch& batch);
 

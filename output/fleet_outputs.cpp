@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fleet/windowed_classes.hpp"
 #include "output/quiet_stderr.hpp"
-#include "timetable/windowed_classes.hpp"
 
 namespace ecorail::output {
 
@@ -92,12 +92,10 @@ void write_timetable_xlsx(const std::filesystem::path& file, const FleetTimetabl
                              lxw_strerror(closed));
 }
 
-nlohmann::json fleet_energy_json(const timetable::FleetEvaluation& ev,
-                                 const timetable::FleetProblem& p) {
+nlohmann::json fleet_energy_json(const energy::FleetEvaluation& ev, const fleet::FleetProblem& p) {
   nlohmann::json j;
-  j["model"] = std::string(timetable::model_name(ev.model));
-  if (ev.model == timetable::EnergyModel::Overlap)
-    j["overlap_variant"] = std::string(timetable::overlap_variant_name(ev.overlap));
+  j["model"] = ev.model;
+  if (!ev.overlap_variant.empty()) j["overlap_variant"] = ev.overlap_variant;
   j["time_step_s"] = ev.time_step_s;
   j["trains"] = p.trains;
   j["substation_energy_kJ"] = ev.total.substation_J() * kJ;
@@ -117,7 +115,7 @@ nlohmann::json fleet_energy_json(const timetable::FleetEvaluation& ev,
     for (const auto& w : p.peak_windows) windows.push_back({w.from_s, w.to_s});
     for (std::size_t k = 1; k < ev.departures_s.size(); ++k)
       classes.push_back(
-          timetable::is_peak_headway(p.peak_windows, ev.departures_s[k - 1], ev.departures_s[k])
+          fleet::is_peak_headway(p.peak_windows, ev.departures_s[k - 1], ev.departures_s[k])
               ? "peak"
               : "offpeak");
     j["peak_windows_s"] = windows;
@@ -185,7 +183,7 @@ void write_train_diagram(const std::filesystem::path& file, PlotFormat format,
 }
 
 void write_power_plot(const std::filesystem::path& file, PlotFormat format,
-                      const timetable::PowerBalance::Trace& trace, const std::string& title) {
+                      const energy::PowerBalance::Trace& trace, const std::string& title) {
   // At most about 3000 points a curve: the bins are averaged in groups (means of means keep
   // the energy), so a long window stays readable and the file small.
   const std::size_t n = trace.traction_W.size();
@@ -216,7 +214,7 @@ void write_power_plot(const std::filesystem::path& file, PlotFormat format,
   check_plot_complete(file, format);
 }
 
-void add_network_json(nlohmann::json& j, const timetable::NetworkEvaluation& n) {
+void add_network_json(nlohmann::json& j, const power::NetworkEvaluation& n) {
   nlohmann::json subs = nlohmann::json::array();
   for (const auto& s : n.substations) {
     subs.push_back({{"name", s.name},
@@ -251,7 +249,7 @@ void add_network_json(nlohmann::json& j, const timetable::NetworkEvaluation& n) 
 }
 
 void write_substation_plot(const std::filesystem::path& file, PlotFormat format,
-                           const timetable::SubstationTrace& trace, const std::string& title) {
+                           const power::SubstationTrace& trace, const std::string& title) {
   // As the power plot: at most about 3000 points a curve, bins averaged in groups.
   const std::size_t n = trace.power_W.empty() ? 0 : trace.power_W.front().size();
   const std::size_t group = std::max<std::size_t>(1, n / 3000);

@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "energy/fleet_energy_model.hpp"
+#include "energy/power_flow_balance.hpp"
+#include "fleet/fleet_problem.hpp"
 #include "output/gnuplot.hpp"
 #include "physics/trip.hpp"
 #include "power/load_flow.hpp"
-#include "timetable/fleet_models.hpp"
-#include "timetable/network_evaluation.hpp"
-#include "timetable/power_balance.hpp"
+#include "power/network_evaluation.hpp"
 
 namespace ecorail::output {
 
@@ -25,8 +26,8 @@ struct FleetTimetable {
   std::vector<std::string> stations;  // in the order of travel
   std::vector<double> positions_m;    // along the run
   std::vector<int> departures_s;
-  physics::Trip trip;                               // the pattern, departing at 0
-  std::vector<timetable::PeakWindow> peak_windows;  // shaded on the train diagram
+  physics::Trip trip;                           // the pattern, departing at 0
+  std::vector<fleet::PeakWindow> peak_windows;  // shaded on the train diagram
   // Per-train patterns: train k's own trip (departing at 0); empty when all run `trip`.
   std::vector<physics::Trip> per_train_trips;
   // Train k's run on the clock.
@@ -45,8 +46,8 @@ void write_timetable_xlsx(const std::filesystem::path& file, const FleetTimetabl
                           const nlohmann::json& energy);
 
 // The energy breakdown (keys in docs/fleet.md).
-nlohmann::json fleet_energy_json(const timetable::FleetEvaluation& evaluation,
-                                 const timetable::FleetProblem& problem);
+nlohmann::json fleet_energy_json(const energy::FleetEvaluation& evaluation,
+                                 const fleet::FleetProblem& problem);
 
 // Plots into file in the given format (a temporary's name says nothing: the caller takes the
 // format from the target's name, plot_format_for). window: [from_s, to_s) of the clock.
@@ -54,15 +55,15 @@ void write_train_diagram(const std::filesystem::path& file, PlotFormat format,
                          const FleetTimetable& timetable, double from_s, double to_s,
                          const std::string& title);
 void write_power_plot(const std::filesystem::path& file, PlotFormat format,
-                      const timetable::PowerBalance::Trace& trace, const std::string& title);
+                      const energy::PowerBalance::Trace& trace, const std::string& title);
 
 // Network model: the keys of docs/fleet.md's network section (substations, line losses,
 // traction input, auxiliaries, used and curtailed regeneration, train voltages, curtailment
 // events), added to the energy breakdown.
-void add_network_json(nlohmann::json& energy, const timetable::NetworkEvaluation& network);
+void add_network_json(nlohmann::json& energy, const power::NetworkEvaluation& network);
 // Power of every substation over the trace's window.
 void write_substation_plot(const std::filesystem::path& file, PlotFormat format,
-                           const timetable::SubstationTrace& trace, const std::string& title);
+                           const power::SubstationTrace& trace, const std::string& title);
 // The voltage along the line at one instant: the load flow's nodes (substations and trains,
 // joined by the conductor's linear voltage drop), with the trains' voltage limits.
 void write_voltage_plot(const std::filesystem::path& file, PlotFormat format,

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "timetable/search_support.hpp"
+#include "fleet/search_support.hpp"
 
 namespace ecorail::recovery {
 
@@ -16,7 +16,7 @@ constexpr std::uint64_t kDelaySalt = 0x6465'6c61'7973'3332ULL;  // "delays32"
 // Draw k of the key (seed, day, train, station): one SplitMix64 finaliser per key field.
 std::uint64_t key_draw(std::uint64_t seed, std::uint64_t day, std::uint64_t train,
                        std::uint64_t station, std::uint64_t k) {
-  using timetable::counter_mix;
+  using fleet::counter_mix;
   const std::uint64_t h =
       counter_mix(counter_mix(counter_mix(counter_mix(seed ^ kDelaySalt) ^ day) ^ train) ^ station);
   return counter_mix(h ^ k);
@@ -93,7 +93,7 @@ bool parse_delay_tail(const std::string& text, DelayDistribution& d, std::string
 
 DelayDraw draw_delay(const DelayDistribution& d, std::uint64_t seed, std::uint64_t day,
                      std::uint64_t train, std::uint64_t station) {
-  using timetable::uniform01;
+  using fleet::uniform01;
   const double u = uniform01(key_draw(seed, day, train, station, 0));
   DelayDraw out;
   if (u < d.p_none) return out;

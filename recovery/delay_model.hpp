@@ -3,7 +3,7 @@
 // (0.2), and by more than small_max_s with the rest (0.1), drawn from the tail distribution,
 // which is an option: exponential (small_max_s + an exponential of mean tail_mean_s, 30 s by
 // default) or uniform over (tail_low_s, tail_high_s]. Every draw comes from the project's
-// counter-based generator (timetable/search_support.hpp) keyed by (seed, day, train, station),
+// counter-based generator (fleet/search_support.hpp) keyed by (seed, day, train, station),
 // so it depends only on what it is for: the same key gives the same delay whichever thread,
 // process or machine makes it, in whatever order.
 #pragma once

@@ -12,8 +12,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "fleet/fleet_pattern.hpp"
 #include "service/separation.hpp"
-#include "timetable/fleet_pattern.hpp"
 
 namespace ecorail::recovery {
 
@@ -116,7 +116,7 @@ double separation_time_s(const dp::SectionLibrary& library, const Plan& plan, Se
         &runs.piece_with_sim(j, std::max(plan.running_time_s(0, j), runs.min_time_s(j))).sim);
     if (j + 1 < n) dwells.push_back(plan.dwell_s(0, j + 1));
   }
-  const physics::Trip trip = timetable::trip_from_runs(library, sims, dwells);
+  const physics::Trip trip = fleet::trip_from_runs(library, sims, dwells);
   const service::SeparationOptions sep;
   const double b = service::default_separation_braking_m_s2(library.train());
   auto exceeded = [&](double h) {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "timetable/fleet_pattern.hpp"
-#include "timetable/fleet_problem.hpp"
+#include "fleet/fleet_pattern.hpp"
+#include "fleet/fleet_problem.hpp"
 
 namespace ecorail::recovery {
 
@@ -65,14 +65,14 @@ Plan reference_plan(const dp::SectionLibrary& library, const std::vector<std::st
                     const dp::JourneyOptions& journey, int trains, int span_s, double trip_time_s,
                     double dwell_s) {
   const std::vector<double> dwells(library.size() - 1, dwell_s);
-  const timetable::PatternTrip pattern =
-      timetable::optimal_split_pattern(library, dwells, trip_time_s, journey);
-  timetable::FleetProblem fleet;
+  const fleet::PatternTrip pattern =
+      fleet::optimal_split_pattern(library, dwells, trip_time_s, journey);
+  fleet::FleetProblem fleet;
   fleet.trains = trains;
   fleet.span_s = span_s;
   fleet.trip_time_s = trip_time_s;
   std::vector<double> departures;
-  for (int d : timetable::departures_from_headways(timetable::uniform_headways(fleet)))
+  for (int d : fleet::departures_from_headways(fleet::uniform_headways(fleet)))
     departures.push_back(d);
   return plan_from_pattern(stations, pattern.pattern.running_times_s, pattern.pattern.dwells_s,
                            departures);

@@ -18,11 +18,11 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "fleet/search_support.hpp"
 #include "physics/motion.hpp"
 #include "physics/simulator.hpp"
 #include "physics/speed_envelope.hpp"
 #include "physics/units.hpp"
-#include "timetable/search_support.hpp"
 
 namespace ecorail::physics {
 namespace {
@@ -34,8 +34,8 @@ struct Draws {
   std::uint64_t edit = 0;
   int k = 0;
   double uniform() {
-    return timetable::uniform01(
-        timetable::counter_draw(seed, edit, static_cast<std::uint64_t>(k++), 0, kSalt));
+    return fleet::uniform01(
+        fleet::counter_draw(seed, edit, static_cast<std::uint64_t>(k++), 0, kSalt));
   }
   std::size_t index(std::size_t n) {
     return std::min(n - 1, static_cast<std::size_t>(uniform() * static_cast<double>(n)));

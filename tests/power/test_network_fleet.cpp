@@ -7,13 +7,15 @@
 #include <cmath>
 #include <memory>
 
-#include "tests/timetable/fleet_fixture.hpp"
-#include "timetable/fleet_models.hpp"
-#include "timetable/network_balance.hpp"
-#include "timetable/network_evaluation.hpp"
+#include "energy/fleet_energy_model.hpp"
+#include "power/network_balance.hpp"
+#include "power/network_evaluation.hpp"
+#include "tests/fleet/fleet_fixture.hpp"
 
-namespace ecorail::timetable {
+namespace ecorail::fleet {
 namespace {
+
+using power::NetworkEvaluation;
 
 using testing::small_fleet;
 using testing::small_pattern;
@@ -36,7 +38,7 @@ std::vector<int> departures() {
 
 EnergyModelOptions network(double r_per_km, double aux_W) {
   EnergyModelOptions o;
-  o.model = EnergyModel::Network;
+  o.model = "network";
   o.time_step_s = 0.1;
   o.power_supply = supply(r_per_km, aux_W);
   return o;
@@ -46,9 +48,8 @@ TEST(NetworkFleet, ZeroResistanceIsThePowerFlowModel) {
   EnergyModelOptions pf;
   pf.time_step_s = 0.1;
   const auto t = departures();
-  const FleetEvaluation a = FleetModels(small_pattern().trip, kFleet, pf).evaluate(t);
-  const FleetEvaluation b =
-      FleetModels(small_pattern().trip, kFleet, network(0.0, 0.0)).evaluate(t);
+  const FleetEvaluation a = TestFleet(small_pattern().trip, kFleet, pf).evaluate(t);
+  const FleetEvaluation b = TestFleet(small_pattern().trip, kFleet, network(0.0, 0.0)).evaluate(t);
   ASSERT_TRUE(b.network);
   EXPECT_GT(a.total.used_regen_J, 0.0);  // the trains do exchange energy
   EXPECT_NEAR(b.network->substation_J, a.total.substation_J(), 1e-9 * a.total.traction_J);
@@ -59,7 +60,7 @@ TEST(NetworkFleet, ZeroResistanceIsThePowerFlowModel) {
 
 TEST(NetworkFleet, TheEnergyBalanceClosesAtEveryInstantAndOverTheDay) {
   const FleetEvaluation e =
-      FleetModels(small_pattern().trip, kFleet, network(0.023, 1.5e5)).evaluate(departures());
+      TestFleet(small_pattern().trip, kFleet, network(0.023, 1.5e5)).evaluate(departures());
   const NetworkEvaluation& n = *e.network;
   EXPECT_EQ(n.unsolved_instants, 0);
   EXPECT_LT(n.max_balance_error_fraction, 1e-9);
@@ -75,7 +76,7 @@ TEST(NetworkFleet, TheEnergyBalanceClosesAtEveryInstantAndOverTheDay) {
 }
 
 TEST(NetworkFleet, MovesGiveExactlyTheTotalsOfAFreshPlacement) {
-  const FleetModels models(small_pattern().trip, kFleet, network(0.023, 1.5e5));
+  const TestFleet models(small_pattern().trip, kFleet, network(0.023, 1.5e5));
   const NetworkSetup setup = models.network_setup();
   NetworkBalance moved(*setup.profile, *setup.supply, 1.0, kFleet.trains, setup.horizon_s, 1);
   std::vector<int> t = departures();
@@ -102,7 +103,7 @@ TEST(NetworkFleet, MovesGiveExactlyTheTotalsOfAFreshPlacement) {
 }
 
 TEST(NetworkFleet, TotalsDoNotDependOnTheThreadCount) {
-  const FleetModels models(small_pattern().trip, kFleet, network(0.023, 1.5e5));
+  const TestFleet models(small_pattern().trip, kFleet, network(0.023, 1.5e5));
   NetworkSetup one = models.network_setup(1), two = models.network_setup(2);
   const NetworkEvaluation a = evaluate_network(one, departures());
   const NetworkEvaluation b = evaluate_network(two, departures());
@@ -113,4 +114,4 @@ TEST(NetworkFleet, TotalsDoNotDependOnTheThreadCount) {
 }
 
 }  // namespace
-}  // namespace ecorail::timetable
+}  // namespace ecorail::fleet

@@ -1,4 +1,4 @@
-// The network model's searches and bound (timetable/network_bound.hpp, network_optimiser.hpp,
+// The network model's searches and bound (energy/network_bound.hpp, the headway search with the network model,
 // pattern_search.hpp) on the small fleet (the reference train on A6 -> A9): the bound never
 // exceeds the best timetable found by enumerating every timetable of 3- and 4-train fleets
 // (diode supplies with and without auxiliaries, a reversible one, a high-resistance one); with
@@ -14,15 +14,15 @@
 #include <limits>
 #include <memory>
 
-#include "tests/timetable/fleet_fixture.hpp"
-#include "timetable/fleet_models.hpp"
-#include "timetable/headway_optimiser.hpp"
-#include "timetable/network_balance.hpp"
-#include "timetable/network_bound.hpp"
-#include "timetable/pair_bound.hpp"
-#include "timetable/pattern_search.hpp"
+#include "energy/fleet_energy_model.hpp"
+#include "energy/network_bound.hpp"
+#include "energy/pair_bound.hpp"
+#include "fleet/headway_optimiser.hpp"
+#include "fleet/pattern_search.hpp"
+#include "power/network_balance.hpp"
+#include "tests/fleet/fleet_fixture.hpp"
 
-namespace ecorail::timetable {
+namespace ecorail::fleet {
 namespace {
 
 using testing::small_fleet;
@@ -41,7 +41,7 @@ std::shared_ptr<power::PowerSupply> supply(double r_per_km, double aux_W, bool r
 
 EnergyModelOptions network(std::shared_ptr<const power::PowerSupply> s, double step_s) {
   EnergyModelOptions o;
-  o.model = EnergyModel::Network;
+  o.model = "network";
   o.time_step_s = step_s;
   o.power_supply = std::move(s);
   return o;
@@ -98,7 +98,7 @@ TEST(NetworkBound, NeverAboveTheBruteForceOptimum) {
       {"high resistance", supply(0.15, 5e4, false), small_fleet(3, 30, 150, 160)},
   };
   for (const Case& c : cases) {
-    const NetworkBound b = network_substation_bound(profile, *c.s, 1.0, c.p);
+    const NetworkBound b = network_substation_bound(profile, *c.s, 1.0, limits_of(c.p));
     int count = 0;
     const double best = brute_force_minimum(c.p, *c.s, profile, &count);
     EXPECT_GT(count, 50) << c.name;
@@ -117,7 +117,7 @@ TEST(NetworkBound, NeverAboveTheBruteForceOptimum) {
   }
   // With a reversible substation only the total regeneration caps the reuse.
   const NetworkBound rev =
-      network_substation_bound(profile, *supply(0.023, 1.5e5, true), 1.0, cases[2].p);
+      network_substation_bound(profile, *supply(0.023, 1.5e5, true), 1.0, limits_of(cases[2].p));
   EXPECT_FALSE(rev.pair_bound);
   EXPECT_DOUBLE_EQ(rev.substation_J, rev.demand_J - rev.regen_J);
 }
@@ -127,9 +127,10 @@ TEST(NetworkBound, ZeroResistanceAndNoAuxiliariesIsThePowerFlowPairBound) {
   // power-flow pair bound of the same trip on the same grid.
   const FleetProblem p = small_fleet(8, 40, 120, 550);
   const NetworkProfile profile(small_pattern().trip, 10);
-  const NetworkBound b = network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, p);
+  const NetworkBound b =
+      network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, limits_of(p));
   const PowerProfile pf(small_pattern().trip, 10, {});
-  const PairBound pair = used_regen_bound(pf, p);
+  const PairBound pair = used_regen_bound(pf, limits_of(p));
   const double cap = std::min(pair.bound_used_J, p.trains * profile.regen_total_J());
   EXPECT_NEAR(b.reuse_cap_J, cap, 1e-6 * cap);
   EXPECT_NEAR(b.substation_J, p.trains * profile.traction_total_J() - cap, 1e-6 * b.substation_J);
@@ -150,7 +151,7 @@ TEST(NetworkOptimiser, WindowedDayKeepsTheClassesAndEvaluatesConsistently) {
   p.peak_windows = {{300, 700}};
   p.peak_headway_min_s = 120;
   p.peak_headway_max_s = 150;
-  const FleetModels models(small_pattern().trip, p, network(supply(0.023, 1.5e5, false), 0.5));
+  const TestFleet models(small_pattern().trip, p, network(supply(0.023, 1.5e5, false), 0.5));
   const HeadwayOptimiserResult r = optimise_headways(models, cheap_search());
   ASSERT_TRUE(r.summary.IsSolutionUsable());
   const std::vector<int>& t = r.evaluation.departures_s;
@@ -196,7 +197,7 @@ TEST(NetworkPatternSearch, NeverWorseThanHeadwaysAloneAndKeepsTheTrip) {
   EXPECT_NEAR(r.pattern.trip.stops().back().arrival_s, p.trip_time_s, 0.05);
   // The result is the network evaluation of its own pattern and departures.
   const FleetEvaluation again =
-      FleetModels(r.pattern.trip, p, model).evaluate(r.timetable.evaluation.departures_s);
+      TestFleet(r.pattern.trip, p, model).evaluate(r.timetable.evaluation.departures_s);
   ASSERT_TRUE(again.network);
   EXPECT_EQ(again.network->substation_J, r.timetable.evaluation.network->substation_J);
   // Per-train patterns are refused for this model, with the reason.
@@ -206,4 +207,4 @@ TEST(NetworkPatternSearch, NeverWorseThanHeadwaysAloneAndKeepsTheTrip) {
 }
 
 }  // namespace
-}  // namespace ecorail::timetable
+}  // namespace ecorail::fleet

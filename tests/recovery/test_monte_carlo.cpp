@@ -10,13 +10,13 @@
 #include <cmath>
 #include <map>
 
+#include "energy/power_flow_balance.hpp"
+#include "energy/power_flow_profile.hpp"
+#include "fleet/fleet_pattern.hpp"
 #include "output/section_run_cache.hpp"
 #include "recovery/delay_recovery.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery_fixture.hpp"
-#include "timetable/fleet_pattern.hpp"
-#include "timetable/power_balance.hpp"
-#include "timetable/power_profile.hpp"
 
 namespace ecorail::recovery {
 namespace {
@@ -108,7 +108,7 @@ TEST(MonteCarlo, ADayWithoutDelaysCostsThePlansEnergyByAnIndependentEvaluation) 
   EXPECT_EQ(r.lateness_sum_s, 0.0);
   EXPECT_EQ(r.knock_on_delays, 0);
   // Independent: every section re-solved for its planned time, each train's whole trip laid in
-  // the fleet's power balance (timetable/, exact bins of the whole trip on the same grid).
+  // the fleet's power balance (energy/, exact bins of the whole trip on the same grid).
   const dp::SectionLibrary& lib = small_library();
   std::vector<dp::SectionTimeSolve> solves;
   for (std::size_t j = 0; j < lib.size(); ++j)
@@ -119,11 +119,11 @@ TEST(MonteCarlo, ADayWithoutDelaysCostsThePlansEnergyByAnIndependentEvaluation) 
     sims.push_back(&s.search.run.sim);
     traction_J += s.search.run.sim.energy.traction_work_J;
   }
-  const physics::Trip trip = timetable::trip_from_runs(lib, sims, {30.0, 30.0});
-  const timetable::PowerProfile profile(trip, 10, {});
-  timetable::PowerBalance balance({&profile, &profile, &profile, &profile}, 1200.0);
+  const physics::Trip trip = fleet::trip_from_runs(lib, sims, {30.0, 30.0});
+  const energy::PowerProfile profile(trip, 10, {});
+  energy::PowerBalance balance({&profile, &profile, &profile, &profile}, 1200.0);
   balance.place_all({0, 98, 300, 398});
-  const timetable::FleetEnergy e = balance.energy();
+  const energy::FleetEnergy e = balance.energy();
   EXPECT_NEAR(r.traction_kJ, 4.0 * traction_J / 1e3, 1e-6 * r.traction_kJ);
   EXPECT_NEAR(r.traction_kJ, e.traction_J / 1e3, 1e-6 * r.traction_kJ);
   // A train leaves as the one ahead brakes into the next stop: they share energy, the check

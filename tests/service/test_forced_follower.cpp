@@ -11,7 +11,7 @@
 #include <cmath>
 #include <memory>
 
-#include "../timetable/fleet_fixture.hpp"
+#include "../fleet/fleet_fixture.hpp"
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
@@ -26,7 +26,7 @@ namespace {
 
 // The timetable tests' small fleet line: the reference train on A6 -> A9.
 const dp::SectionLibrary& library() {
-  return timetable::testing::small_library();
+  return fleet::testing::small_library();
 }
 
 // 420 s running over A6 -> A9 and two 30 s dwells, the fleet's small pattern.

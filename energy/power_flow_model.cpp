@@ -1,0 +1,162 @@
+#include "energy/power_flow_model.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "energy/pair_bound.hpp"
+
+namespace ecorail::energy {
+
+std::unique_ptr<PowerProfile> make_profile(const physics::Trip& trip,
+                                           const EnergyModelOptions& options) {
+  const std::vector<double> none;
+  return std::make_unique<PowerProfile>(
+      trip, options.ticks_per_second(),
+      options.model == "sections" ? options.section_boundaries_m : none);
+}
+
+namespace {
+
+// The power balance behind the FleetBalance interface: the objective is the substation energy,
+// traction (fixed under moves) less the used energy, so a move changes it by minus the change of
+// the used energy, exactly.
+class PowerFlowBalance : public FleetBalance {
+ public:
+  explicit PowerFlowBalance(const PowerFlowModel& model)
+      : model_(model), balance_(model.make_power_balance()), own_(model.limits().trains) {}
+  int trains() const override { return balance_->trains(); }
+  void place_all(const std::vector<int>& departures_s) override {
+    balance_->place_all(departures_s);
+  }
+  MicroJoules move(int train, int departure_s) override {
+    return -balance_->move(train, departure_s);
+  }
+  MicroJoules substation() const override { return balance_->traction() - balance_->used(); }
+  MicroJoules substation_change_if(int train, const physics::Trip& trip) const override {
+    return balance_->substation_change_if(train, *make_profile(trip, model_.options()));
+  }
+  void set_trip(int train, const physics::Trip& trip) override {
+    std::unique_ptr<PowerProfile> profile = make_profile(trip, model_.options());
+    balance_->set_profile(train, profile.get());
+    own_[train] = std::move(profile);
+  }
+  FleetEvaluation evaluation() const override { return model_.evaluation_of(*balance_); }
+
+ private:
+  const PowerFlowModel& model_;
+  std::unique_ptr<PowerBalance> balance_;
+  std::vector<std::unique_ptr<PowerProfile>> own_;  // trains with a trip of their own
+};
+
+// One power balance for the whole pattern search: a candidate trip is a new profile laid under
+// every train, not a new balance (a day's balance is about 100 MB).
+class PowerFlowPricer : public TripPricer {
+ public:
+  PowerFlowPricer(const PowerFlowModel& model, const std::vector<int>& departures_s)
+      : model_(model), current_(make_profile(model.trip(), model.options())) {
+    balance_ = model.make_power_balance(
+        std::vector<const PowerProfile*>(model.limits().trains, current_.get()));
+    balance_->place_all(departures_s);
+  }
+  std::optional<double> substation_J(const physics::Trip& trip) override {
+    // The balance lets go of the previous candidate before it is freed.
+    std::unique_ptr<PowerProfile> next = make_profile(trip, model_.options());
+    lay(next.get());
+    candidate_ = std::move(next);
+    return balance_->energy().substation_J();
+  }
+  void accept() override { current_ = std::move(candidate_); }
+
+ private:
+  void lay(const PowerProfile* profile) {
+    for (int k = 0; k < balance_->trains(); ++k) balance_->set_profile(k, profile);
+  }
+  const PowerFlowModel& model_;
+  std::unique_ptr<PowerProfile> current_, candidate_;
+  std::unique_ptr<PowerBalance> balance_;
+};
+
+}  // namespace
+
+PowerFlowModel::PowerFlowModel(const physics::Trip& trip, const FleetLimits& limits,
+                               const EnergyModelOptions& options)
+    : FleetEnergyModel(trip, limits, options) {
+  // The profile's bins (at most one per bin of the trip) and the balance's traction and regen
+  // per section and bin of the day.
+  const double sections = static_cast<double>(options.section_boundaries_m.size()) + 1.0;
+  check_memory(trip_bins() * sizeof(PowerBin) + 2.0 * sections * horizon_bins() * 8.0,
+               "the power balance of " + std::to_string(limits.trains) + " trains");
+  profile_ = make_profile(trip, options);
+}
+
+std::unique_ptr<PowerBalance> PowerFlowModel::make_power_balance() const {
+  return make_power_balance(std::vector<const PowerProfile*>(limits().trains, profile_.get()));
+}
+
+std::unique_ptr<PowerBalance> PowerFlowModel::make_power_balance(
+    std::vector<const PowerProfile*> profiles) const {
+  if (profiles.size() != static_cast<std::size_t>(limits().trains))
+    throw std::invalid_argument("one power profile per train expected");
+  // Every pattern keeps the trip time, so the pattern's arrival bounds every train's.
+  return std::make_unique<PowerBalance>(std::move(profiles), horizon_s());
+}
+
+FleetEvaluation PowerFlowModel::evaluation_of(const PowerBalance& balance) const {
+  FleetEvaluation out;
+  out.model = name();
+  out.time_step_s = options().time_step_s;
+  for (int k = 0; k < balance.trains(); ++k) out.departures_s.push_back(balance.departure_s(k));
+  out.total = balance.energy();
+  out.per_train = balance.train_energy();
+  out.per_section = balance.section_energy();
+  return out;
+}
+
+FleetEvaluation PowerFlowModel::evaluate(const std::vector<int>& departures_s) const {
+  check_departures(departures_s);
+  auto balance = make_power_balance();
+  balance->place_all(departures_s);
+  return evaluation_of(*balance);
+}
+
+std::unique_ptr<FleetEnergyModel> PowerFlowModel::rebuilt(const physics::Trip& trip,
+                                                          const FleetLimits& limits,
+                                                          const EnergyModelOptions& options) const {
+  return std::make_unique<PowerFlowModel>(trip, limits, options);
+}
+
+std::unique_ptr<FleetBalance> PowerFlowModel::make_balance(int) const {
+  return std::make_unique<PowerFlowBalance>(*this);
+}
+
+std::vector<double> PowerFlowModel::two_train_values_J(int lo_s, int hi_s, int) const {
+  PowerBalance two({profile_.get(), profile_.get()}, hi_s + trip().arrival_s() + 2.0);
+  std::vector<double> out;
+  for (int h = lo_s; h <= hi_s; ++h) {
+    two.place_all({0, h});
+    out.push_back(to_joules(two.used()));
+  }
+  return out;
+}
+
+FleetLowerBound PowerFlowModel::lower_bound() const {
+  // No timetable uses more than is regenerated, nor more than is drawn.
+  const PairBound pair = used_regen_bound(*profile_, limits());
+  const MicroJoules trains = limits().trains;
+  FleetLowerBound b;
+  b.name = "pair bound";
+  b.used_regen_J = std::min({pair.bound_used_J, to_joules(trains * profile_->regen_total()),
+                             to_joules(trains * profile_->traction_total())});
+  return b;
+}
+
+double PowerFlowModel::pair_sum_J(const std::vector<int>& departures_s) const {
+  return energy::pair_sum_J(*profile_, departures_s);
+}
+
+std::unique_ptr<TripPricer> PowerFlowModel::make_trip_pricer(const std::vector<int>& departures_s,
+                                                             double, int) const {
+  return std::make_unique<PowerFlowPricer>(*this, departures_s);
+}
+
+}  // namespace ecorail::energy

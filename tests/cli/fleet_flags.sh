@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# `ecorail timetable`: what the many-train commands refuse and how they end. A supply or a
+# section boundary beyond the line, a flag the chosen model does not read, a value given to the
+# --separation flag and a time step too fine for the machine are one clear error (exit 2,
+# nothing written); a load flow without a solution prints no result line; a heuristic search
+# stopped by its move budget says NO_CONVERGENCE with its gap (exit 0), an exact DP CONVERGENCE,
+# and a --gap wide enough to cover the proven gap makes the same search CONVERGENCE.
+set -uo pipefail
+source "$(dirname "$0")/lib/common.sh" "$@"
+
+supply="$src/data/contest/power_supply.toml"
+small=(--from A6 --to A9 --trains 6 --span 1000 --headway 150:250 --trip-time 480 --quiet)
+
+# Supply and section boundaries beyond the line (the reference line is 22 728 m long).
+sed 's/^position_m = 4706.0/position_m = 50000.0/' "$supply" > far_substation.toml
+expect_error "50000 m" timetable evaluate "${small[@]}" --model network \
+  --power-supply far_substation.toml --json out.json
+{ cat "$supply"; printf '\n[[conductors]]\nfrom_m = 99999.0\nconductor_ohm_per_km = 0.008\n'
+  printf 'return_ohm_per_km = 0.015\n'; } > far_conductor.toml
+expect_error "99999 m" timetable evaluate "${small[@]}" --model network \
+  --power-supply far_conductor.toml --json out.json
+expect_error "--sections-at" timetable evaluate --quiet --model sections --sections-at 30000 \
+  --json out.json
+
+# Flags the chosen model does not use, and a value on the --separation flag.
+expect_error "--sections-at" timetable evaluate "${small[@]}" --sections-at 2000 --json out.json
+expect_error "--overlap" timetable evaluate "${small[@]}" --overlap either --json out.json
+expect_error "--train-length" timetable evaluate "${small[@]}" --train-length 120 --json out.json
+expect_error "--separation" timetable evaluate "${small[@]}" --separation=-5 --json out.json
+
+# A grid far finer than any machine holds is refused before it is allocated.
+expect_error "--step" timetable evaluate --quiet --step 0.0001 --json out.json
+
+# A load flow with no solution: an error, and no result line on stdout.
+sed 's/^conductor_ohm_per_km = 0.008/conductor_ohm_per_km = 1e300/' "$supply" > open_line.toml
+"$ecorail" timetable evaluate "${small[@]}" --model network --power-supply open_line.toml \
+  --json out.json > stdout.txt 2> stderr.txt
+code=$?
+if [ "$code" -eq 0 ] || [ -s stdout.txt ] || [ -e out.json ]; then
+  echo "FAIL: a load flow without a solution: exit $code, stdout:"; cat stdout.txt; fail=1
+fi
+
+# Termination: the annealing's move budget with a proven gap above --gap is NO_CONVERGENCE
+# (exit 0, gap in the JSON); a --gap above the proven gap makes it CONVERGENCE; the exact
+# overlap DP is CONVERGENCE with a gap of 0.
+"$ecorail" timetable optimise "${small[@]}" --moves 2000 --json heuristic.json > /dev/null ||
+  { echo "FAIL: heuristic optimise exit $?"; fail=1; }
+"$ecorail" timetable optimise "${small[@]}" --moves 2000 --gap 0.99 --json wide.json > /dev/null ||
+  { echo "FAIL: optimise --gap 0.99 exit $?"; fail=1; }
+"$ecorail" timetable optimise "${small[@]}" --model overlap --json exact.json > /dev/null ||
+  { echo "FAIL: exact optimise exit $?"; fail=1; }
+python3 - <<'PY' || fail=1
+import json
+h = json.load(open("heuristic.json")); w = json.load(open("wide.json")); e = json.load(open("exact.json"))
+gap = h["gap_fraction_of_substation"]
+assert "bound_used_regen_kJ" in h and gap == h["summary"]["gap_fraction_of_substation"], h["summary"]
+assert gap > 1e-4 and h["summary"]["termination"] == "NO_CONVERGENCE", (gap, h["summary"])
+assert "NO_CONVERGENCE" in h["summary"]["brief_report"] and "gap" in h["summary"]["message"]
+assert w["summary"]["termination"] == "CONVERGENCE" and w["substation_energy_kJ"] == h["substation_energy_kJ"]
+assert e["summary"]["termination"] == "CONVERGENCE" and e["summary"]["exact"] and e["gap_fraction_of_substation"] == 0
+PY
+
+exit $fail

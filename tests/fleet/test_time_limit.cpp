@@ -1,0 +1,54 @@
+// A time limit is one for the whole headway search, polish included, and a search it stops is
+// NO_CONVERGENCE with its gap stated, never CONVERGENCE.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fleet_fixture.hpp"
+
+namespace ecorail::fleet {
+namespace {
+
+// A limit of a millisecond is over before the annealing's first move (the two-train values and
+// the starts take longer): neither the annealing nor the polish may then move a train, so the
+// result is one of the starts, and the summary says the limit stopped the search.
+TEST(HeadwayOptimiserTimeLimit, StopsThePolishToo) {
+  const FleetProblem p = testing::small_fleet(10, 80, 200, 9 * 150);
+  EnergyModelOptions o;
+  o.time_step_s = 0.1;
+  const TestFleet fleet(testing::small_pattern().trip, p, o);
+  HeadwayOptimiserOptions opt;
+  opt.moves_per_run = 100000;
+  opt.time_limit_s = 1e-3;
+  const HeadwayOptimiserResult r = optimise_headways(fleet, opt);
+  EXPECT_TRUE(r.summary.time_limit_reached);
+  EXPECT_EQ(r.summary.moves, 0);
+  EXPECT_EQ(r.summary.termination, Termination::NO_CONVERGENCE);
+  EXPECT_TRUE(std::isfinite(r.summary.gap_fraction));
+  EXPECT_GT(r.summary.gap_fraction, opt.gap_fraction);
+  EXPECT_NE(r.summary.message.find("time limit"), std::string::npos);
+  EXPECT_NE(r.summary.BriefReport().find("NO_CONVERGENCE"), std::string::npos);
+}
+
+// The same search without a limit: CONVERGENCE exactly when the proven gap is within the
+// tolerance.
+TEST(HeadwayOptimiserTimeLimit, ConvergenceOnlyWithinTheGapTolerance) {
+  const FleetProblem p = testing::small_fleet(10, 80, 200, 9 * 150);
+  EnergyModelOptions o;
+  o.time_step_s = 0.1;
+  const TestFleet fleet(testing::small_pattern().trip, p, o);
+  HeadwayOptimiserOptions opt;
+  opt.moves_per_run = 2000;
+  const HeadwayOptimiserResult tight = optimise_headways(fleet, opt);
+  ASSERT_GT(tight.summary.gap_fraction, 0.0);
+  EXPECT_EQ(tight.summary.termination, tight.summary.gap_fraction <= opt.gap_fraction
+                                           ? Termination::CONVERGENCE
+                                           : Termination::NO_CONVERGENCE);
+  opt.gap_fraction = 0.999;
+  const HeadwayOptimiserResult wide = optimise_headways(fleet, opt);
+  EXPECT_EQ(wide.headways_s, tight.headways_s);
+  EXPECT_EQ(wide.summary.termination, Termination::CONVERGENCE);
+}
+
+}  // namespace
+}  // namespace ecorail::fleet
