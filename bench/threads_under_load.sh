@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two threads against one on a busy machine (issue 10): runs the A6 -> A7 solve and the whole
+# Two threads against one on a busy machine: runs the A6 -> A7 solve and the whole
 # line with --threads 1 and --threads 2, first with nothing else running, then while a
 # competing busy process (a shell loop) occupies one core, and prints the median wall time of
 # each (the runs of the four variants alternate, so a change in the machine's load falls on

@@ -9,7 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/output_options.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"

@@ -49,7 +49,7 @@ void run_fit_envelope(const FitEnvelopeArgs& a) {
   report << result.report(kind);
   report << "form written: " << form_name(written) << "\n";
   const FormFit& fit = result.form(written);
-  if (!fit.converged) {
+  if (!fit.converged()) {
     throw std::runtime_error(std::string(form_name(written)) +
                              " fit did not converge: nothing written");
   }

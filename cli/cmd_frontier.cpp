@@ -10,7 +10,7 @@
 #include "cli/errors.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"

@@ -8,7 +8,7 @@
 #include "cli/journey_solve.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "cli/timing_journey_solve.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"

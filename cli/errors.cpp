@@ -6,13 +6,10 @@
 #include <exception>
 #include <iostream>
 
+#include "base/error.hpp"
 #include "data/input_error.hpp"
-#include "dp/journey_plan.hpp"
-#include "dp/resource_estimate.hpp"
 #include "dp/time_target.hpp"
-#include "policy/advisor.hpp"
 #include "policy/ladder.hpp"
-#include "policy/policy_table.hpp"
 
 namespace ecorail::cli {
 
@@ -70,6 +67,49 @@ std::string decimal(const std::string& text) {
   const auto first = digits.find_first_not_of('0');
   digits = first == std::string::npos ? "0" : digits.substr(first);
   return digits == "0" ? digits : sign + digits;
+}
+
+// The flag a library error of a command-line value is reported on, when the error names none.
+const char* flag_of(const Error& e) {
+  if (const auto* ladder = dynamic_cast<const policy::LadderTimeError*>(&e)) {
+    return ladder->offset_s() == 0.0 ? "--time" : "--lambda-ladder";
+  }
+  switch (e.kind()) {
+    case ErrorKind::kRunningTime:
+      return "--time";
+    case ErrorKind::kResourceLimit:  // a grid too fine for this machine
+      return "--ds/--dv";
+    case ErrorKind::kDwell:
+      return "--dwell";
+    default:
+      return "";
+  }
+}
+
+// Every library error: its one-line message and exit code, by kind. Bad input of any kind exits
+// 2; a fit that did not converge is a result that is not usable and exits 1.
+int report(const Error& e) {
+  const auto* std_error = dynamic_cast<const std::exception*>(&e);
+  const std::string what = std_error ? std_error->what() : std::string(error_kind_name(e.kind()));
+  switch (e.kind()) {
+    case ErrorKind::kBadInput:
+    case ErrorKind::kPolicyFormat:  // names the file it read
+    case ErrorKind::kPolicyMismatch:
+      return fail(2, what);
+    case ErrorKind::kInvalidOptions:
+      return fail(2, "invalid options: " + what);
+    case ErrorKind::kRunningTime:
+    case ErrorKind::kResourceLimit:
+    case ErrorKind::kDwell: {
+      const std::string field = e.context().field.empty() ? flag_of(e) : e.context().field;
+      const auto* infeasible = dynamic_cast<const dp::InfeasibleTimeError*>(&e);
+      const std::string expected = infeasible ? time_message(*infeasible) : what;
+      return fail(2, data::InputError("command line", 0, field, expected).what());
+    }
+    case ErrorKind::kNotConverged:
+      return fail(1, what);
+  }
+  return fail(1, what);
 }
 
 }  // namespace
@@ -144,13 +184,6 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
-  } catch (const data::InputError& e) {
-    return fail(2, e.what());
-  } catch (const InvalidOptionsError& e) {
-    return fail(2, std::string("invalid options: ") + e.what());
-  } catch (const policy::LadderTimeError& e) {
-    const char* flag = e.offset_s() == 0.0 ? "--time" : "--lambda-ladder";
-    return fail(2, data::InputError("command line", 0, flag, time_message(e)).what());
   } catch (const policy::LadderRungError& e) {
     if (e.offset_s() == 0.0) {
       return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
@@ -159,18 +192,8 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
                        "command line", 0, "--lambda-ladder",
                        std::string("offsets whose running times the engine solves; ") + e.what())
                        .what());
-  } catch (const dp::InfeasibleTimeError& e) {
-    return fail(2, data::InputError("command line", 0, "--time", time_message(e)).what());
-  } catch (const dp::TimeRequestError& e) {  // too long a time, a proportional share too short
-    return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
-  } catch (const dp::ResourceLimitError& e) {  // a grid too fine for this machine
-    return fail(2, data::InputError("command line", 0, "--ds/--dv", e.what()).what());
-  } catch (const dp::DwellError& e) {
-    return fail(2, data::InputError("command line", 0, "--dwell", e.what()).what());
-  } catch (const policy::PolicyFormatError& e) {
-    return fail(2, e.what());  // names the file it read
-  } catch (const policy::PolicyMismatchError& e) {
-    return fail(2, e.what());
+  } catch (const Error& e) {
+    return report(e);
   } catch (const std::exception& e) {
     return fail(1, e.what());
   }

@@ -1,20 +1,23 @@
-// Errors of the ecorail program in one place: which library error becomes which one-line
-// message and exit code. Bad input of any kind (a malformed flag, an options struct that fails
-// its IsValid, a running time outside what the section allows, an unreadable policy table, a
-// bad line or train file) exits 2; anything else (a solve that is not usable, an I/O failure)
-// exits 1. Every message is one line on stderr starting "ecorail: error: ".
+// Errors of the ecorail program in one place: which library error (an ecorail::Error, by its
+// kind) becomes which one-line message and exit code. Bad input of any kind (a malformed flag, an
+// options struct that fails its IsValid, a running time outside what the section allows, an
+// unreadable policy table, a bad line or train file) exits 2; anything else (a solve that is not
+// usable, an I/O failure) exits 1. Every message is one line on stderr starting "ecorail: error: ".
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "base/error.hpp"
+
 namespace ecorail::cli {
 
 // An options struct of the library refused by its IsValid; the message names the field.
-class InvalidOptionsError : public std::invalid_argument {
+class InvalidOptionsError : public std::invalid_argument, public Error {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit InvalidOptionsError(const std::string& what)
+      : std::invalid_argument(what), Error(ErrorKind::kInvalidOptions) {}
 };
 
 // An IsValid message on the flag that sets the field it names, for the fields the shared flags

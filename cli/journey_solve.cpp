@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "cli/errors.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "data/atomic_file.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "cli/errors.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"

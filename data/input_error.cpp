@@ -22,9 +22,7 @@ std::string format_message(const std::string& file, int row, const std::string& 
 
 InputError::InputError(std::string file, int row, std::string field, const std::string& expected)
     : std::runtime_error(format_message(file, row, field, expected)),
-      file_(std::move(file)),
-      row_(row),
-      field_(std::move(field)),
+      Error(ErrorKind::kBadInput, ErrorContext{std::move(file), row, std::move(field)}),
       expected_(expected) {}
 
 }  // namespace ecorail::data

@@ -2,9 +2,9 @@
 // (a number, a positive limit); these ranges refuse inputs that parse but describe no railway
 // the model is meant for (a gradient of 1e308 per mille, a curve of 1 cm radius, a negative
 // Davis coefficient that turns resistance into propulsion, a train that cannot move itself).
-// Such inputs used to be solved and reported as successes; now each is one InputError naming
-// the file, row and field and the range (docs/formats.md, "Plausibility ranges"). The ranges
-// are wide on purpose: every real adhesion railway, metro, tram and freight train fits.
+// Each is one InputError naming the file, row and field and the range (docs/formats.md,
+// "Plausibility ranges"). The ranges are wide on purpose: every real adhesion railway, metro, tram
+// and freight train fits.
 #pragma once
 
 #include <string>

@@ -56,7 +56,7 @@ struct CappedSectionSummary {
   int trim_iterations = 0;
   long polish_trials = 0;
   std::string message;
-  bool IsSolutionUsable() const { return termination == Termination::CONVERGENCE; }
+  bool IsSolutionUsable() const { return is_usable(termination); }
   std::string BriefReport() const;
   std::string FullReport() const;
 };

@@ -1,6 +1,7 @@
 #include "dp/cruise_polish.hpp"
 
 #include "dp/golden_section.hpp"
+#include "dp/lambda_bracket.hpp"
 
 #include <cmath>
 #include <limits>
@@ -43,6 +44,8 @@ using physics::ControlProgram;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // The hold-speed solve: at most this many re-simulations per coasting point.
 constexpr int kMaxTimeSolves = 30;
+// The narrowest bracket of a hold start worth another re-simulation.
+constexpr double kMinBracket_m = 1e-9;
 
 // The polished shape: one traction phase ending at the hold (index hold), the cruise, and the
 // phase that leaves it (index exit).
@@ -164,27 +167,18 @@ class Polisher {
         if (x <= lo_limit) return {};
       }
     }
-    // Illinois regula falsi inside [lo, hi]; bisection while an end does not arrive.
-    int side = 0;
-    for (int it = 0; it < kMaxTimeSolves; ++it) {
-      double x = 0.5 * (lo + hi);
-      if (std::isfinite(f_lo) && std::isfinite(f_hi) && f_lo != f_hi) {
-        x = lo + f_lo * (hi - lo) / (f_lo - f_hi);
-        if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-      }
-      const double f = f_at(x, &trial);
-      if (std::abs(f) <= tolerance_s_) return trial;
-      if (f > 0.0) {
-        lo = x, f_lo = f;
-        if (side == +1 && std::isfinite(f_hi)) f_hi *= 0.5;
-        side = +1;
-      } else {
-        hi = x, f_hi = f;
-        if (side == -1 && std::isfinite(f_lo)) f_lo *= 0.5;
-        side = -1;
-      }
-      if (hi - lo < 1e-9) break;
-    }
+    // Narrow [lo, hi] with the engine's one root search (LambdaBracket: Illinois regula falsi,
+    // bisection while an end does not arrive) until the time is met.
+    bool met = false;
+    LambdaBracket root(
+        [&](double x) {
+          const double f = f_at(x, &trial);
+          met = std::abs(f) <= tolerance_s_;
+          return f;
+        },
+        lo, f_lo, hi, f_hi, kMaxTimeSolves);
+    root.narrow([&] { return met; }, kMinBracket_m);
+    if (met) return trial;
     return {};
   }
 

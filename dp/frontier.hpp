@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/termination.hpp"
 #include "dp/time_target.hpp"

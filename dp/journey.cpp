@@ -208,7 +208,6 @@ void summarise_journey(const std::vector<physics::Route>& routes, double min_tot
     arrives = arrives && run_arrives(sim);
   }
   s.termination = termination_of(arrives, sol.converged);
-  s.converged = s.termination == Termination::CONVERGENCE;
   s.warnings = sol.warnings;
 }
 

@@ -83,8 +83,8 @@ struct JourneySummary {
   Objective objective = Objective::Traction;
   double lambda_J_per_s = 0.0;  // NaN for the proportional split
   int lambda_evaluations = 0;
-  bool converged = false;  // same as termination == CONVERGENCE
   Termination termination = Termination::FAILURE;
+  bool converged() const { return termination == Termination::CONVERGENCE; }
   double build_wall_s = 0.0;
   double search_wall_s = 0.0;
   double total_wall_s = 0.0;

@@ -11,12 +11,15 @@
 #include <utility>
 #include <vector>
 
+#include "base/error.hpp"
+
 namespace ecorail::dp {
 
 // A dwell request that does not fit the run; what() says what was expected.
-class DwellError : public std::invalid_argument {
+class DwellError : public std::invalid_argument, public Error {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit DwellError(const std::string& what)
+      : std::invalid_argument(what), Error(ErrorKind::kDwell) {}
 };
 
 struct DwellSpec {

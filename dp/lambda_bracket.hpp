@@ -1,12 +1,13 @@
-// LambdaBracket: the one root search of the engine, shared by the single-section and the journey
-// running-time searches and by the switch-point trim (there x is the position of the switch and
-// f the re-simulated time error; the second constructor takes the bracket it has found). With x =
-// log(lambda), f(x) = running time - target falls as x grows. The bracket is found by stepping x
-// from a starting point until f changes sign, then narrowed by regula falsi (Illinois variant,
-// which halves a stale end's value so the bracket keeps shrinking from both sides). The caller
-// scores every evaluation itself and says when it is close enough. f may return +infinity for "no
+// LambdaBracket: the one root search of the library, for a function that falls as x grows. The
+// single-section and the journey running-time searches use it with x = log(lambda) and f(x) =
+// running time - target; the switch-point trim with x the position of the switch and the cruise
+// polish with x the start of the hold, f the re-simulated time error (both through the second
+// constructor, with the bracket they have found). The bracket is found by stepping x from a
+// starting point until f changes sign, then narrowed by regula falsi (Illinois variant, which
+// halves a stale end's value so the bracket keeps shrinking from both sides). The caller scores
+// every evaluation itself and says when it is close enough. f may return +infinity for "no
 // usable run, treat as too slow" (a run that does not reach the stop); an infinite end makes the
-// step a bisection.
+// step a bisection. The one search for a minimum is dp/golden_section.hpp.
 #pragma once
 
 #include <functional>

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/error.hpp"
 #include "dp/stage_grid.hpp"
 #include "physics/route.hpp"
 #include "physics/train.hpp"
@@ -45,9 +46,10 @@ double cgroup_memory_limit_bytes(const std::string& root = "/");
 
 // Thrown when a grid's estimate exceeds memory_limit_bytes() or the node count exceeds what a
 // 32-bit node index holds. what() names the grid steps (ds_m, dv_kmh), the estimate and the limit.
-class ResourceLimitError : public std::runtime_error {
+class ResourceLimitError : public std::runtime_error, public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit ResourceLimitError(const std::string& what)
+      : std::runtime_error(what), Error(ErrorKind::kResourceLimit) {}
 };
 
 // Throws ResourceLimitError if the engine would not fit; otherwise returns the estimate.

@@ -108,7 +108,6 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.termination = termination_of(
       run_arrives(out.run.sim),
       found.converged && run_meets_targets(out.run.sim, target_time_s) && balance.closes());
-  s.converged = s.termination == Termination::CONVERGENCE;
   if (!found.converged) {
     s.warnings.push_back(
         format_text("running-time search did not converge to %.3f s", options.search.tolerance_s));

@@ -40,8 +40,8 @@ struct SectionSolveSummary {
   int lambda_evaluations = 0;
   int trim_simulations = 0;
   double trim_shift_m = 0.0;
-  bool converged = false;  // same as termination == CONVERGENCE
   Termination termination = Termination::FAILURE;
+  bool converged() const { return termination == Termination::CONVERGENCE; }
   double build_wall_s = 0.0;
   double search_wall_s = 0.0;
   double total_wall_s = 0.0;

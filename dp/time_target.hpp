@@ -29,17 +29,19 @@
 #include <utility>
 #include <vector>
 
+#include "base/error.hpp"
 #include "dp/cruise_polish.hpp"
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
 #include "dp/section_engine.hpp"
 
 namespace ecorail::dp {
 
 // A running time the engine cannot solve: the base of the errors below (and of a journey's
 // proportional share that falls below a section's minimum). what() says what went wrong.
-class TimeRequestError : public std::invalid_argument {
+class TimeRequestError : public std::invalid_argument, public Error {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit TimeRequestError(const std::string& what)
+      : std::invalid_argument(what), Error(ErrorKind::kRunningTime) {}
 };
 
 // The requested running time is shorter than the flat-out run. subject (may be empty) says

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "dp/threads.hpp"
 #include "fitting/equation_error.hpp"
 
 namespace ecorail::fitting {
@@ -34,9 +36,10 @@ const FormulationSummary& Summary::primary() const {
 
 const FormulationSummary& Summary::converged_primary() const {
   const FormulationSummary& r = primary();
-  if (!r.fit.converged) {
+  if (!r.fit.converged()) {
     throw NotConvergedError(
-        std::string(method_name(r.method)) + " fit ended " + r.fit.termination + " in pass " +
+        std::string(method_name(r.method)) + " fit ended " +
+        std::string(dp::termination_name(r.fit.termination)) + " in pass " +
         std::to_string(r.fit.passes) + " of " + std::to_string(r.fit.passes) + " after " +
         std::to_string(r.fit.last_pass_iterations) + " of at most " +
         std::to_string(r.fit.max_iterations_per_pass) + " iterations (" +
@@ -80,9 +83,35 @@ FormulationSummary summarise(Method m, const FitResult& fit, const FitSetup& set
 
 }  // namespace
 
+bool CalibrationOptions::IsValid(std::string* error) const {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (!(loss_scale > 0.0 && std::isfinite(loss_scale))) {
+    return fail("loss_scale must be a positive number of noise standard deviations");
+  }
+  if (!(discount_weight >= 0.0 && discount_weight <= 1.0)) {
+    return fail("discount_weight must be in [0, 1]");
+  }
+  if (robust_passes < 1) return fail("robust_passes must be at least 1");
+  if (max_iterations < 1) return fail("max_iterations must be at least 1");
+  if (num_threads < 1 || num_threads > dp::kMaxThreads) {
+    return fail("num_threads must be from 1 to dp::kMaxThreads");
+  }
+  if (output_error.segment_rows < 1) return fail("output_error.segment_rows must be at least 1");
+  if (!(output_error.continuity_fraction > 0.0 &&
+        std::isfinite(output_error.continuity_fraction))) {
+    return fail("output_error.continuity_fraction must be a positive fraction of the noise scale");
+  }
+  return true;
+}
+
 Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
                   const CalibrationOptions& options) {
   const auto start_time = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
   if (logs.empty()) throw data::InputError("", 0, "--log", "at least one log file");
   Summary s;
   s.options = options;
@@ -157,8 +186,9 @@ Summary calibrate(const std::vector<Log>& logs, const physics::Train& base,
   }
   for (const auto& r : s.results) {
     const std::string who = std::string(method_name(r.method));
-    if (!r.fit.converged) {
-      s.notes.push_back(who + ": Ceres stopped without convergence (" + r.fit.termination + ")");
+    if (!r.fit.converged()) {
+      s.notes.push_back(who + ": Ceres stopped without convergence (" +
+                        std::string(dp::termination_name(r.fit.termination)) + ")");
     }
     if (!r.fit.covariance_ok) {
       s.notes.push_back(who + ": the covariance is rank deficient; standard errors unavailable");

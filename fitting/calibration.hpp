@@ -12,7 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "dp/progress.hpp"
+#include "base/error.hpp"
+#include "dp/progress_callback.hpp"
 #include "fitting/formulation.hpp"
 #include "fitting/identifiability.hpp"
 #include "fitting/log_plausibility.hpp"
@@ -52,6 +53,9 @@ struct CalibrationOptions {
   int num_threads = 1;
   // Called with ("equation-error pass" or "output-error pass", pass, passes) as the fits run.
   dp::ProgressFn progress;
+  // False with one sentence naming the first field out of range; calibrate() checks it first
+  // (std::invalid_argument).
+  bool IsValid(std::string* error) const;
 };
 
 struct ParameterEstimate {
@@ -95,9 +99,10 @@ struct Summary {
 };
 
 // A calibration whose written result did not converge (see Summary::converged_primary).
-class NotConvergedError : public std::runtime_error {
+class NotConvergedError : public std::runtime_error, public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit NotConvergedError(const std::string& what)
+      : std::runtime_error(what), Error(ErrorKind::kNotConverged) {}
 };
 
 // Runs the calibration; throws data::InputError for unusable logs (physically impossible rows

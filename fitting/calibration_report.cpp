@@ -55,7 +55,7 @@ std::string Summary::BriefReport() const {
       first = false;
     }
     out += ", sigma " + fmt("%.3g", r.fit.sigma) + " " + r.residual_unit;
-    out += ", " + r.fit.termination + "\n";
+    out += ", " + std::string(dp::termination_name(r.fit.termination)) + "\n";
   }
   return out;
 }

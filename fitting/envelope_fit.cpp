@@ -14,6 +14,7 @@
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/plausibility.hpp"
+#include "fitting/formulation.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::fitting {
@@ -158,7 +159,7 @@ class PowerCost final : public ceres::SizedCostFunction<1, 2> {
 struct Solved {
   std::vector<double> x;
   Eigen::MatrixXd cov;
-  bool converged = false;
+  dp::Termination termination = dp::Termination::FAILURE;
   double rss = 0.0;
 };
 
@@ -174,7 +175,7 @@ Solved solve_and_cov(ceres::Problem& problem, std::vector<double>& x, int n) {
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
   Solved s;
-  s.converged = summary.termination_type == ceres::CONVERGENCE;
+  s.termination = termination_of_ceres(summary.termination_type);
   s.rss = 2.0 * summary.final_cost;
   const int p = static_cast<int>(x.size());
   ceres::Covariance::Options co;
@@ -266,7 +267,7 @@ FormFit fit_piecewise(const std::vector<EnvelopePoint>& pts, int degree) {
 
   FormFit fit;
   fit.form = EnvelopeForm::Piecewise;
-  fit.converged = s.converged;
+  fit.termination = s.termination;
   fit.parameters = 2 + degree;
   fit.force_max_kN = s.x[0];
   fit.force_max_kN_se = std::sqrt(s.cov(0, 0));
@@ -327,7 +328,7 @@ FormFit fit_power(const std::vector<EnvelopePoint>& pts) {
   Solved s = solve_and_cov(problem, x, n);
   FormFit fit;
   fit.form = EnvelopeForm::ConstantPower;
-  fit.converged = s.converged;
+  fit.termination = s.termination;
   fit.parameters = 2;
   fit.force_max_kN = s.x[0];
   fit.force_max_kN_se = std::sqrt(s.cov(0, 0));
@@ -359,13 +360,18 @@ double FormFit::force_kN(double v_kmh) const {
   return piecewise_value(x.data(), static_cast<int>(local_kN.size()), v_kmh, nullptr);
 }
 
+bool EnvelopeFitOptions::IsValid(std::string* error) const {
+  if (degree < 1 || degree > 6) {
+    if (error) *error = "a polynomial degree from 1 to 6; got " + std::to_string(degree);
+    return false;
+  }
+  return true;
+}
+
 EnvelopeFitResult fit_envelope(const std::vector<EnvelopePoint>& points,
                                const EnvelopeFitOptions& options) {
-  if (options.degree < 1 || options.degree > 6) {
-    throw data::InputError(
-        options.label, 0, "--degree",
-        "a polynomial degree from 1 to 6; got " + std::to_string(options.degree));
-  }
+  std::string why;
+  if (!options.IsValid(&why)) throw data::InputError(options.label, 0, "--degree", why);
   std::map<double, int> distinct;
   for (const auto& p : points) ++distinct[p.speed_kmh];
   const std::size_t need = static_cast<std::size_t>(options.degree) + 4;
@@ -427,14 +433,14 @@ std::string EnvelopeFitResult::report(EnvelopeKind kind) const {
   }
   out += "  rms " + fmt("%.4g", piecewise.rms_kN) + " kN, max |residual| " +
          fmt("%.4g", piecewise.max_abs_kN) + " kN, AIC " + fmt("%.2f", piecewise.aic) + ", BIC " +
-         fmt("%.2f", piecewise.bic) + (piecewise.converged ? "" : " (not converged)") + "\n";
+         fmt("%.2f", piecewise.bic) + (piecewise.converged() ? "" : " (not converged)") + "\n";
   out += "\nconstant power: F = min(Fmax, P / v)\n";
   out += "  Fmax                " + pm(power.force_max_kN, power.force_max_kN_se) + " kN\n";
   out += "  P                   " + pm(power.power_kW, power.power_kW_se) + " kW\n";
   out += "  breakpoint P/Fmax   " + pm(power.breakpoint_kmh, power.breakpoint_kmh_se) + " km/h\n";
   out += "  rms " + fmt("%.4g", power.rms_kN) + " kN, max |residual| " +
          fmt("%.4g", power.max_abs_kN) + " kN, AIC " + fmt("%.2f", power.aic) + ", BIC " +
-         fmt("%.2f", power.bic) + (power.converged ? "" : " (not converged)") + "\n";
+         fmt("%.2f", power.bic) + (power.converged() ? "" : " (not converged)") + "\n";
   out += "\nbetter fit (lower BIC): " + std::string(form_name(better)) + " (BIC difference " +
          fmt("%.1f", std::abs(piecewise.bic - power.bic)) + ")\n";
   return out;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "dp/termination.hpp"
 #include "physics/force_envelope.hpp"
 #include "physics/train.hpp"
 
@@ -32,8 +33,10 @@ std::vector<EnvelopePoint> read_envelope_points(const std::filesystem::path& pat
 std::vector<EnvelopePoint> parse_envelope_points(std::string_view text, const std::string& label);
 
 struct EnvelopeFitOptions {
-  int degree = 3;  // degree of the polynomial above the breakpoint
+  int degree = 3;  // degree of the polynomial above the breakpoint, 1 to 6
   std::string label = "<points>";
+  // False with what was expected (the degree's range) when an option is out of range.
+  bool IsValid(std::string* error) const;
 };
 
 struct FormFit {
@@ -55,7 +58,8 @@ struct FormFit {
   double max_abs_kN = 0.0;
   double aic = 0.0;
   double bic = 0.0;
-  bool converged = false;
+  dp::Termination termination = dp::Termination::FAILURE;  // of the Ceres fit
+  bool converged() const { return termination == dp::Termination::CONVERGENCE; }
   std::vector<double> fitted_kN;  // at each point
   double force_kN(double v_kmh) const;
 };

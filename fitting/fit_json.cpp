@@ -63,8 +63,8 @@ nlohmann::json formulation_json(const Summary& s, const FormulationSummary& r) {
   }
   j["coasting_decel_level"] = coast;
   j["iterations"] = r.fit.iterations;
-  j["converged"] = r.fit.converged;
-  j["termination"] = r.fit.termination;
+  j["converged"] = r.fit.converged();
+  j["termination"] = std::string(dp::termination_name(r.fit.termination));
   j["solve_time_s"] = r.fit.solve_time_s;
   return j;
 }
@@ -102,7 +102,7 @@ nlohmann::json form_json(const FormFit& f) {
   j["rss_kN2"] = f.rss_kN2;
   j["aic"] = f.aic;
   j["bic"] = f.bic;
-  j["converged"] = f.converged;
+  j["converged"] = f.converged();
   return j;
 }
 

@@ -7,6 +7,18 @@
 
 namespace ecorail::fitting {
 
+dp::Termination termination_of_ceres(ceres::TerminationType type) {
+  switch (type) {
+    case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS:
+      return dp::Termination::CONVERGENCE;
+    case ceres::NO_CONVERGENCE:
+      return dp::Termination::NO_CONVERGENCE;
+    default:
+      return dp::Termination::FAILURE;
+  }
+}
+
 namespace {
 
 struct PassOutcome {
@@ -118,8 +130,7 @@ FitResult run_fit(Formulation& f, const FitSetup& setup) {
   out.value = params;
   out.sigma = sigma;
   out.final_cost = summary.final_cost;
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.termination = ceres::TerminationTypeToString(summary.termination_type);
+  out.termination = termination_of_ceres(summary.termination_type);
   out.ceres_brief = summary.BriefReport();
 
   // Covariance of the parameter block; residuals are already divided by sigma.

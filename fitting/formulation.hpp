@@ -12,7 +12,8 @@
 
 #include <ceres/ceres.h>
 
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
+#include "dp/termination.hpp"
 #include "fitting/log_prep.hpp"
 #include "fitting/motion_model.hpp"
 #include "fitting/parameters.hpp"
@@ -46,6 +47,10 @@ struct DiscountedRow {
   double weight = 1.0;  // the loss function's weight of that residual
 };
 
+// A Ceres termination as the library's: CONVERGENCE (and USER_SUCCESS), NO_CONVERGENCE, or
+// FAILURE (and USER_FAILURE).
+dp::Termination termination_of_ceres(ceres::TerminationType type);
+
 struct FitResult {
   ParamVector value{};
   ParamCovariance covariance{};
@@ -62,8 +67,10 @@ struct FitResult {
   int max_iterations_per_pass = 0;
   double initial_cost = 0.0;
   double final_cost = 0.0;
-  bool converged = false;
-  std::string termination;
+  // How the final pass ended, Ceres' CONVERGENCE / NO_CONVERGENCE / FAILURE (USER_SUCCESS
+  // counts as CONVERGENCE, USER_FAILURE as FAILURE).
+  dp::Termination termination = dp::Termination::FAILURE;
+  bool converged() const { return termination == dp::Termination::CONVERGENCE; }
   std::string ceres_brief;  // Ceres' BriefReport of the final pass
   double solve_time_s = 0.0;
 };

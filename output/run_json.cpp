@@ -53,7 +53,7 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
   j["lambda"] = s.lambda_J_per_s / 1000.0;
   j["lambda_unit"] = "kJ/s";
   j["objective"] = std::string(dp::objective_name(s.objective));
-  j["converged"] = s.converged;
+  j["converged"] = s.converged();
   j["termination"] = std::string(dp::termination_name(s.termination));
   j["warnings"] = s.warnings;
   j["grid"] = {{"ds_m", s.grid.ds_m},

@@ -16,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "base/error.hpp"
 #include "data/line.hpp"
 #include "physics/simulator.hpp"
 #include "physics/train.hpp"
@@ -24,9 +25,10 @@
 namespace ecorail::policy {
 
 // The table was made for another line or train (or by an incompatible engine).
-class PolicyMismatchError : public std::runtime_error {
+class PolicyMismatchError : public std::runtime_error, public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit PolicyMismatchError(const std::string& what)
+      : std::runtime_error(what), Error(ErrorKind::kPolicyMismatch) {}
 };
 
 struct Advice {

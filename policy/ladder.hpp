@@ -29,7 +29,7 @@ struct PolicyLadderOptions {
   // price itself must give the running time, so it is searched to kLayerLambdaTolerance_s (the
   // section search's default leaves half a second to its trim).
   dp::TimeSearchOptions search = layer_search();
-  // Called with ("layer", layers done, layers) as the ladder is built (cli/progress.hpp).
+  // Called with ("layer", layers done, layers) as the ladder is built (cli/progress_line.hpp).
   dp::ProgressFn progress;
   // Checks every field (offsets distinct, each leaving a positive running time); on failure
   // writes one sentence naming the field into *error.

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/error.hpp"
 #include "dp/objective.hpp"
 #include "dp/section_engine.hpp"
 #include "physics/control.hpp"
@@ -26,9 +27,10 @@
 namespace ecorail::policy {
 
 // A policy file that cannot be read: wrong magic or version, truncated, corrupted, inconsistent.
-class PolicyFormatError : public std::runtime_error {
+class PolicyFormatError : public std::runtime_error, public Error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit PolicyFormatError(const std::string& what)
+      : std::runtime_error(what), Error(ErrorKind::kPolicyFormat) {}
 };
 
 inline constexpr char kPolicyMagic[8] = {'E', 'C', 'R', 'L', 'P', 'O', 'L', '\n'};

@@ -50,7 +50,7 @@ struct LoadFlowSummary {
   bool no_solution_at_full_demand = false;  // Newton diverged before a curtailment was imposed
   bool voltage_limit_violated = false;  // a train outside its limits with nothing left to curtail
   std::string message;
-  bool IsSolutionUsable() const { return termination == Termination::CONVERGENCE; }
+  bool IsSolutionUsable() const { return is_usable(termination); }
   std::string BriefReport() const;
   std::string FullReport() const;
 };

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Both ends of the running time, for every section of the reference line (issue 8): a time below
+# Both ends of the running time, for every section of the reference line: a time below
 # the flat-out run is refused (exit 2, the minimum stated, nothing written); a long time is either
 # solved with a re-simulated run that stops at the station and keeps the time, or refused with
 # the longest time the engine solves (exit 2, nothing written); an absurd time is refused. Never

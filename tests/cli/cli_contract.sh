@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The program's own contract (issue 8): --version, a misspelt command named with the list of
+# The program's own contract: --version, a misspelt command named with the list of
 # commands, CLI11's messages under the program's prefix, advice refused outside the section or
 # the train's speeds, and a frontier that starts below the flat-out run refused, not moved.
 set -uo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Determinism (issue 15): the same inputs give the same bytes with 1 and 2 threads, and two
+# Determinism: the same inputs give the same bytes with 1 and 2 threads, and two
 # runs at the same time give the same bytes as one alone, for sections, journeys, frontiers and
 # the fleet commands (timetable evaluate and optimise, also on the DC network model) and a
 # delay recovery. Only the wall times and the thread

@@ -40,7 +40,7 @@ w, e = m["traction_energy_kJ"], m["traction_input_energy_kJ"]
 assert w / 0.95 < e < w / 0.6, (w, e)
 PY
 
-# TTOBench: a train's auxiliary power is read (it used to be refused).
+# TTOBench: a train's auxiliary power is read.
 flat_track track.data flat_2km "[0, 2000]" 60
 hand_train train.data ', "auxiliary power": {"unit": "kW", "value": 80}'
 "$ecorail" min-time --line track.data --train train.data --from S0 --to S1 --json t.json \

@@ -73,7 +73,7 @@ awk -F, 'BEGIN { OFS = "," } NR == 40 { $2 = "159.2"; $3 = "5.7" } { print }' \
   "$data/seed_profile_A6_A7_110s.csv" > "$tmp/drop.csv"
 expect_error "row 40, field 'speed_cm_s': expected a speed the train can reach from row 39" \
   --log "$tmp/drop.csv"
-# A speed of 1e308 m/s (issue 15: a segmentation fault inside the fit) is refused as well.
+# A speed of 1e308 m/s (a segmentation fault inside the fit) is refused as well.
 printf 'time_s,speed_ms,traction_force_kN\n0,10,100\n1,1e308,100\n2,10,100\n' >"$tmp/huge.csv"
 expect_error "huge.csv: row 3, field 'speed_ms'" --log "$tmp/huge.csv"
 # Outputs are checked before the fit.

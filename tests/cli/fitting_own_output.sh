@@ -2,7 +2,7 @@
 # ecorail's own per-second table calibrates back to the train it was made with, on a line with
 # curves (A11 -> A14 of the reference line runs through radii of 463 to 1000 m): the table
 # carries curve_radius_m and calibrate reads it. Without the column the curve resistance reads
-# as Davis resistance and the fit was 8-13 standard errors off (issue 8); with it the
+# as Davis resistance and the fit is 8-13 standard errors off; with it the
 # equation-error estimates lie within 3 standard errors of the reference Davis coefficients
 # and the written (output-error) estimate's level-track coasting deceleration within
 # 0.002 m/s^2 of the reference on 30-70 km/h (without the column: about 0.01 m/s^2 off).

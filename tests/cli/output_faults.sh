@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Outputs under faults (issue 15): a full disk and a read-only file system give one line naming
+# Outputs under faults: a full disk and a read-only file system give one line naming
 # the output and the cause, a non-zero exit and no file (no truncated SVG with exit 0, no raw
 # libxlsxwriter or gnuplot text); /dev/full is never replaced; a run killed with SIGKILL while
 # it writes leaves no temporary file (outputs are anonymous O_TMPFILE files until committed), no

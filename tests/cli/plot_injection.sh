@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Nothing a user names runs as a command inside gnuplot (issue 15): a plot path or a station
+# Nothing a user names runs as a command inside gnuplot: a plot path or a station
 # name holding ';system('touch X');print(' (or a backquoted command) is drawn as text, for the
 # speed plot of solve and the energy-time plot of frontier; the file X never appears.
 set -uo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Impossible inputs and resource limits (issue 15), end to end: each once gave exit 0 with
+# Impossible inputs and resource limits, end to end: each once gave exit 0 with
 # nonsense, a crash, an abort inside a library or a run of minutes; each is now one line naming
 # file/flag and field, exit 2, nothing written, and within seconds.
 set -uo pipefail

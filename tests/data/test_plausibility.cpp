@@ -1,4 +1,4 @@
-// Plausibility ranges (issue 15): inputs that parse but describe no railway are refused at load
+// Plausibility ranges: inputs that parse but describe no railway are refused at load
 // time with one InputError naming file, row and field and the range, before any solve. Each
 // case here was once solved and reported as a success (exit 0) or ran into nonsense: a gradient
 // of 1e308 per mille, a negative Davis coefficient, a train with no traction, absurd mass or

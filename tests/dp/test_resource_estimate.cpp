@@ -1,4 +1,4 @@
-// Resource limits (issue 15): the memory estimate made before a grid is built is an upper bound
+// Resource limits: the memory estimate made before a grid is built is an upper bound
 // of the grid's real node count and within 1.5 times it; a grid beyond the memory this process can
 // have is refused at once (ResourceLimitError naming ds and dv and the estimate), not after minutes
 // of allocation; thread counts are bounded; a frontier of millions of points is refused by its

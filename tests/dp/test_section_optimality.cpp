@@ -1,5 +1,5 @@
 // The single-section engine against an independent regime-switch search, on the reference line.
-// Acceptance of issue 2: running time within 0.1 s after re-simulation, stop within 0.5 m,
+// Acceptance: running time within 0.1 s after re-simulation, stop within 0.5 m,
 // overspeed under 0.05 km/h, and energy never more than 0.1 % above the independent optimum.
 #include <gtest/gtest.h>
 
@@ -37,7 +37,7 @@ TEST_P(SectionOptimality, DpIsNeverWorseThanTheIndependentSearch) {
   const physics::Route route = data::build_route(data::default_line(), c.from, c.to, train);
   const dp::SectionSolution sol = dp::solve_section(train, route, c.time_s, {});
   const auto& sim = sol.run.sim;
-  EXPECT_TRUE(sol.summary.converged);
+  EXPECT_TRUE(sol.summary.converged());
   EXPECT_NEAR(sim.running_time_s, c.time_s, 0.1);
   EXPECT_LT(std::abs(sim.stop_error_m), 0.5);
   EXPECT_LT(units::ms_to_kmh(sim.max_overspeed_ms), 0.05);

@@ -52,7 +52,7 @@ TEST(Termination, SectionSolveUsableAndCutShort) {
   const SectionSolution good = solve_section(p.train, p.route, 110.0, {});
   EXPECT_EQ(good.summary.termination, Termination::CONVERGENCE);
   EXPECT_TRUE(good.summary.IsSolutionUsable());
-  EXPECT_TRUE(good.summary.converged);
+  EXPECT_TRUE(good.summary.converged());
   EXPECT_TRUE(ends_with(good.summary.BriefReport(), "CONVERGENCE\n"));
   EXPECT_NE(good.summary.FullReport().find("Termination                  CONVERGENCE"),
             std::string::npos);
@@ -65,7 +65,7 @@ TEST(Termination, SectionSolveUsableAndCutShort) {
   const SectionSolution cut = solve_section(p.train, p.route, 110.0, short_search);
   EXPECT_EQ(cut.summary.termination, Termination::NO_CONVERGENCE);
   EXPECT_FALSE(cut.summary.IsSolutionUsable());
-  EXPECT_FALSE(cut.summary.converged);
+  EXPECT_FALSE(cut.summary.converged());
   EXPECT_GT(std::abs(cut.summary.running_time_s - 110.0), 0.1);
   EXPECT_TRUE(ends_with(cut.summary.BriefReport(), "NO_CONVERGENCE\n"));
   EXPECT_NE(cut.summary.FullReport().find("NO_CONVERGENCE"), std::string::npos);

@@ -1,6 +1,6 @@
 // The plots' contact with gnuplot: every text reaches a script through gnuplot_quote and comes
-// out as exactly that text, never as a command (issue 15: a station name or an output path
-// containing ';system('touch X');print(' or a backquoted command ran it); the plot format
+// out as exactly that text, never as a command (a station name or an output path
+// containing ';system('touch X');print(' or a backquoted command would run it); the plot format
 // follows the file name; the speed and frontier plot scripts are run by gnuplot without
 // creating anything but their output.
 #include <gtest/gtest.h>
@@ -31,7 +31,7 @@ class GnuplotTest : public ecorail::testing::TempDirTest {
             "back\\slash \\n '' \"\" @x $y %z",
             "two\nlines"};
   }
-  // An output path that runs "touch dir_/X" when pasted into a script unescaped (issue 15's
+  // An output path that runs "touch dir_/X" when pasted into a script unescaped (as
   // --plot "$PWD/a';system('touch X');print('.svg"); its directories are created.
   std::filesystem::path hostile_path(const std::string& ext) const {
     const std::filesystem::path p =

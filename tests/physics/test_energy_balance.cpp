@@ -1,4 +1,4 @@
-// The energy balance checked before any result is reported (issue 15): traction - braking =
+// The energy balance checked before any result is reported: traction - braking =
 // resistance work (Davis, gradient, curve) + kinetic change, integrated over the trace
 // independently of the simulator's ledger, with non-negative dissipation. A reference run
 // closes it far inside the tolerance; a ledger off by 1 % does not; and a train with a negative

@@ -1,4 +1,4 @@
-// Closed-loop acceptance of the advisor (issue 3), on A6 -> A7 with a 110 s timetable: the
+// Closed-loop acceptance of the advisor, on A6 -> A7 with a 110 s timetable: the
 // physics simulator (RK4, 5 cm steps) driven by a ControlLaw that asks the advisor "what now?" at
 // every step. Following the nominal layer alone:
 //   (a) on time it reproduces the optimal energy within 0.5 %;

@@ -1,4 +1,4 @@
-// A policy table file is untrusted input (issue 15): its FNV-1a checksum can be recomputed by
+// A policy table file is untrusted input: its FNV-1a checksum can be recomputed by
 // anyone, so every header field and every offset is checked against sane ranges before use.
 // Each table here carries a valid checksum; once, the first read past the heap buffer
 // (stage_offset[1] beyond the node count, seen under ASan), the second allocated without end

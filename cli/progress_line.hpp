@@ -9,7 +9,7 @@
 #include <mutex>
 #include <string>
 
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
 
 namespace ecorail::cli {
 
