@@ -1,6 +1,7 @@
 """A headway sweep: the substation energy of a day of uniform headways on the reference line,
-for several headways, with one ecorail.timetable.Fleet (the line's sections and the pattern are
-built once; each timetable then costs only its evaluation).
+for several headways, with one ecorail.timetable.Fleet. Each headway is its own fleet problem
+(trains and span), so the Fleet builds a study (sections, pattern, model) for each; timetables of
+one problem would share it.
 
     PYTHONPATH=build/python python3 examples/python/headway_sweep.py [--model overlap]
 

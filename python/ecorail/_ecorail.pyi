@@ -260,7 +260,7 @@ class timetable:  # submodule ecorail.timetable
                      peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                      offpeak_headway_s: Range = (300, 660), seed: int = 1,
                      time_limit_s: float = 0.0, restarts: int = 2, moves: int = 2000000,
-                     anneal_step_s: float = 1.0,
+                     anneal_step_s: float = 1.0, gap: float = 1e-4,
                      progress: Progress = None) -> "timetable.FleetResult": ...
 
     @staticmethod
@@ -282,7 +282,7 @@ class timetable:  # submodule ecorail.timetable
                  peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                  offpeak_headway_s: Range = (300, 660), seed: int = 1, time_limit_s: float = 0.0,
                  restarts: int = 2, moves: int = 2000000, anneal_step_s: float = 1.0,
-                 ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
+                 gap: float = 1e-4, ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
                  progress: Progress = None) -> "timetable.FleetResult": ...
 
 class delay:  # submodule ecorail.delay

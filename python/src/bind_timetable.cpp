@@ -1,21 +1,20 @@
-// ecorail.timetable.evaluate / optimise: fleet timetables that use regenerated braking energy
-// (question 2.1), a thin wrapper over the library the program's `timetable` command calls:
-// timetable::optimal_split_pattern (the pattern of every train), timetable::FleetModels
-// (evaluate), timetable::optimise_headways (optimise), PowerBalance::trace (per-bin power), and
-// output::fleet_energy_json / add_network_json for to_dict(). Pattern optimisation (--optimise
-// pattern) and the separation check are the program's for now (docs/python.md).
+// ecorail.timetable.evaluate / optimise / Fleet: fleet timetables that use regenerated braking
+// energy (question 2.1), a thin wrapper over fleet::TimetableStudy, the object the program's
+// `timetable` command drives (cli/cmd_timetable.cpp): the study solves the line's sections and
+// the pattern every train drives and builds the energy model; to_dict() is the program's
+// --json by output::timetable_evaluation_json / timetable_optimisation_json. Pattern
+// optimisation (--optimise pattern) and the separation check are the program's for now
+// (docs/python.md).
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "data/route_builder.hpp"
-#include "dp/section_library.hpp"
-#include "output/fleet_outputs.hpp"
+#include "energy/model_registry.hpp"
+#include "fleet/timetable_study.hpp"
+#include "output/timetable_json.hpp"
 #include "power/supply_loader.hpp"
 #include "python/src/common.hpp"
-#include "timetable/fleet_models.hpp"
-#include "timetable/fleet_pattern.hpp"
-#include "timetable/headway_optimiser.hpp"
-#include "timetable/network_evaluation.hpp"
-#include "timetable/power_balance.hpp"
 
 namespace ecorail::python {
 
@@ -45,30 +44,22 @@ int whole(double v, const std::string& field) {
 }
 
 struct PyFleet {
-  std::string stage;  // "evaluate" or "optimise"
   nlohmann::json report;
-  timetable::FleetEvaluation evaluation;
+  energy::FleetEvaluation evaluation;
   PySummary summary;
   double trace_start_s = 0.0, trace_step_s = 0.0;
   std::vector<double> traction_W, regen_W, used_W;
 };
 
-// The problem, the pattern every train drives and its models, as the program sets them up.
-struct FleetSetup {
-  timetable::FleetProblem problem;
-  timetable::EnergyModelOptions model;
-  std::vector<std::string> stops;
-  std::unique_ptr<dp::SectionLibrary> library;
-  timetable::PatternTrip pattern;
-  std::unique_ptr<timetable::FleetModels> models;
-};
-
-timetable::FleetProblem fleet_problem(const FleetArgs& a) {
-  timetable::FleetProblem p;
+// The fleet problem of a, checked as the program checks its flags (cli/timetable_options.cpp).
+fleet::FleetProblem fleet_problem(const FleetArgs& a) {
+  fleet::FleetProblem p;
   p.trains = a.trains;
   p.span_s = a.span_s;
   p.headway_min_s = whole(a.headway_s.first, "headway_s");
   p.headway_max_s = whole(a.headway_s.second, "headway_s");
+  if (!(a.trip_time_s > 0.0))
+    bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
   p.trip_time_s = a.trip_time_s;
   p.dwell_min_s = a.dwell_range_s.first;
   p.dwell_max_s = a.dwell_range_s.second;
@@ -88,98 +79,155 @@ timetable::FleetProblem fleet_problem(const FleetArgs& a) {
   return p;
 }
 
-// The line's sections, the energy model and the pattern every train drives: built once, then
-// any number of fleet problems and timetables on it (ecorail.timetable.Fleet).
-FleetSetup setup_line(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
-  FleetSetup s;
-  const auto model = timetable::model_from_name(a.model);
-  if (!model)
-    bad_argument("model", "'power-flow', 'overlap', 'sections' or 'network'", "'" + a.model + "'");
-  s.model.model = *model;
-  const auto variant = timetable::overlap_variant_from_name(a.overlap);
+// The energy model's options, checked as the program checks its flags.
+energy::EnergyModelOptions model_options(const FleetArgs& a) {
+  energy::EnergyModelOptions o;
+  if (!energy::is_energy_model(a.model))
+    bad_argument("model", energy::energy_model_names(), "'" + a.model + "'");
+  o.model = a.model;
+  const auto variant = energy::overlap_variant_from_name(a.overlap);
   if (!variant) bad_argument("overlap", "'ahead' or 'either'", "'" + a.overlap + "'");
-  s.model.overlap = *variant;
-  s.model.time_step_s =
-      std::isnan(a.step_s)
-          ? (*model == timetable::EnergyModel::Network ? timetable::kNetworkTimeStep_s : 0.01)
-          : a.step_s;
-  s.model.section_boundaries_m = a.sections_at_m;
-  if (*model == timetable::EnergyModel::Network) {
+  o.overlap = *variant;
+  o.time_step_s =
+      std::isnan(a.step_s) ? (a.model == "network" ? energy::kNetworkTimeStep_s : 0.01) : a.step_s;
+  o.section_boundaries_m = a.sections_at_m;
+  if (a.model == "network") {
     if (a.power_supply.empty()) {
       bad_argument("power_supply", "a power-supply file (TOML) for model='network'", "None");
     }
-    s.model.power_supply =
+    o.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(a.power_supply));
   } else if (!a.power_supply.empty()) {
     bad_argument("power_supply", "model='network' (the other models have no supply network)",
                  "a file");
   }
-  if (*model == timetable::EnergyModel::Sections && s.model.section_boundaries_m.empty()) {
+  if (a.model == "sections" && o.section_boundaries_m.empty()) {
     bad_argument("sections_at_m", "at least one supply-section boundary (m) for model='sections'",
                  "none");
   }
+  require_valid(o);
+  return o;
+}
+
+// What a study is built from besides its problem: the line, the train, the run (first to last
+// station), the grid, the pattern's dwell and the model.
+struct StudyInputs {
+  data::Line line;
+  physics::Train train;
+  dp::EngineOptions engine;
+  double dwell_s = 30.0;
+  energy::EnergyModelOptions model;
+};
+
+StudyInputs study_inputs(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
+  StudyInputs in{line.line, train.train, engine_options(a.engine, train), a.dwell_s,
+                 model_options(a)};
   if (train.train.has_efficiency_maps()) {
     bad_argument("train", "a train with constant efficiencies for the fleet models",
                  "'" + train.train.name + "'");
   }
-  s.model.traction_efficiency = train.train.traction_efficiency;
-  require_valid(s.model);
-  if (!(a.trip_time_s > 0.0))
-    bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
   if (!(a.dwell_s >= 0.0)) bad_argument("dwell_s", "a dwell in s >= 0", std::to_string(a.dwell_s));
-  s.stops = data::stops_between(line.line, line.line.stations.front().name,
-                                line.line.stations.back().name);
-  dp::SectionLibraryOptions lib_options;
-  lib_options.engine = engine_options(a.engine, train);
-  require_valid(lib_options.engine);
-  s.library = std::make_unique<dp::SectionLibrary>(
-      train.train, data::build_routes(line.line, s.stops, train.train), lib_options);
-  const std::vector<double> dwells(s.stops.size() - 2, a.dwell_s);
-  dp::JourneyOptions journey;
-  journey.engine = lib_options.engine;
-  journey.measure_marginals = false;
+  require_valid(in.engine);
+  return in;
+}
+
+// The study of one fleet problem: the line's sections, the pattern and the model (the GIL is
+// released by the caller). Errors name the keyword argument as the program names its flag.
+std::unique_ptr<fleet::TimetableStudy> make_study(const StudyInputs& in,
+                                                  const fleet::FleetProblem& problem) {
+  fleet::TimetableStudySetup setup;
+  setup.line = in.line;
+  setup.train = in.train;
+  setup.stops =
+      data::stops_between(in.line, in.line.stations.front().name, in.line.stations.back().name);
+  setup.engine = in.engine;
+  setup.dwell_s = in.dwell_s;
+  setup.problem = problem;
+  setup.model = in.model;
   try {
-    s.pattern = timetable::optimal_split_pattern(*s.library, dwells, a.trip_time_s, journey);
+    return std::make_unique<fleet::TimetableStudy>(setup);
   } catch (const dp::InfeasibleTimeError& e) {
     bad_argument("trip_time_s",
                  "a trip time that leaves at least the flat-out running time of " +
                      std::to_string(e.minimum_s()) + " s after the dwells",
-                 std::to_string(a.trip_time_s));
-  }
-  return s;
-}
-
-// The fleet problem of a and the models on it.
-void set_problem(FleetSetup& s, const FleetArgs& a) {
-  s.problem = fleet_problem(a);
-  s.models = std::make_unique<timetable::FleetModels>(s.pattern.trip, s.problem, s.model);
-}
-
-// The report as the program writes it (without the separation check) and the power per bin.
-void finish(PyFleet& out, const FleetSetup& s, const timetable::FleetEvaluation& ev) {
-  out.evaluation = ev;
-  out.report = output::fleet_energy_json(ev, s.problem);
-  out.report["pattern"] = {{"dwells_s", s.pattern.pattern.dwells_s},
-                           {"running_times_s", s.pattern.pattern.running_times_s},
-                           {"trip_time_s", s.pattern.pattern.trip_time_s()}};
-  out.report["stations"] = s.stops;
-  if (ev.network) output::add_network_json(out.report, *ev.network);
-  if (ev.model == timetable::EnergyModel::PowerFlow ||
-      ev.model == timetable::EnergyModel::Sections) {
-    auto balance = s.models->make_balance();
-    balance->place_all(ev.departures_s);
-    const double end_s =
-        ev.departures_s.empty() ? 0.0 : ev.departures_s.back() + s.pattern.pattern.trip_time_s();
-    const auto trace = balance->trace(0.0, end_s);
-    out.trace_start_s = trace.start_s;
-    out.trace_step_s = trace.step_s;
-    out.traction_W = trace.traction_W;
-    out.regen_W = trace.regen_W;
-    out.used_W = trace.used_W;
+                 std::to_string(problem.trip_time_s));
+  } catch (const std::invalid_argument& e) {
+    // Options that do not fit the run: a section boundary or the supply beyond its end.
+    const std::string what = e.what();
+    if (what.rfind("section_boundaries_m: ", 0) == 0)
+      throw std::invalid_argument("sections_at_m: " + what.substr(22));
+    throw;
   }
 }
 
-std::vector<int> given_departures(const FleetSetup& s, const py::object& departures_s,
+bool same_problem(const fleet::FleetProblem& a, const fleet::FleetProblem& b) {
+  if (a.peak_windows.size() != b.peak_windows.size()) return false;
+  for (std::size_t i = 0; i < a.peak_windows.size(); ++i)
+    if (a.peak_windows[i].from_s != b.peak_windows[i].from_s ||
+        a.peak_windows[i].to_s != b.peak_windows[i].to_s)
+      return false;
+  return a.trains == b.trains && a.headway_min_s == b.headway_min_s &&
+         a.headway_max_s == b.headway_max_s && a.span_s == b.span_s &&
+         a.trip_time_s == b.trip_time_s && a.dwell_min_s == b.dwell_min_s &&
+         a.dwell_max_s == b.dwell_max_s && a.peak_headway_min_s == b.peak_headway_min_s &&
+         a.peak_headway_max_s == b.peak_headway_max_s;
+}
+
+// ecorail.timetable.Fleet: the inputs of the study and the study of the last problem asked for.
+// A study holds one fleet problem (its model is built for that fleet), so a call with another
+// problem builds a new study: its sections and pattern are solved again (the same pattern: the
+// trip time and the dwell are the Fleet's).
+struct FleetState {
+  std::mutex mutex;  // one call at a time on a Fleet (its study is replaced by another problem)
+  StudyInputs inputs;
+  std::unique_ptr<fleet::TimetableStudy> study;
+};
+
+struct PyFleetLine {
+  FleetArgs args;
+  std::shared_ptr<FleetState> state;
+};
+
+// The inputs checked; the study is built by the first call (study_for).
+std::shared_ptr<FleetState> fleet_state(const PyLine& line, const PyTrain& train,
+                                        const FleetArgs& a) {
+  auto state = std::make_shared<FleetState>();
+  state->inputs = study_inputs(line, train, a);
+  return state;
+}
+
+PyFleetLine make_fleet(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
+  PyFleetLine f{a, fleet_state(line, train, a)};
+  const fleet::FleetProblem problem = fleet_problem(a);
+  py::gil_scoped_release release;  // builds the line's sections and solves the pattern
+  f.state->study = make_study(f.state->inputs, problem);
+  return f;
+}
+
+// The Fleet's study for problem, built again when the problem differs from its study's; the
+// caller holds the state's mutex and has released the GIL.
+fleet::TimetableStudy& study_for(FleetState& state, const fleet::FleetProblem& problem) {
+  if (!state.study || !same_problem(state.study->problem(), problem)) {
+    state.study.reset();
+    state.study = make_study(state.inputs, problem);
+  }
+  return *state.study;
+}
+
+// The power per bin over the day, for the models with a power balance.
+void add_trace(PyFleet& out, const fleet::TimetableStudy& s, const std::vector<int>& departures) {
+  if (!s.has_power_trace()) return;
+  const double end_s =
+      departures.empty() ? 0.0 : departures.back() + s.pattern().pattern.trip_time_s();
+  const auto trace = s.power_trace(departures, 0.0, end_s);
+  out.trace_start_s = trace.start_s;
+  out.trace_step_s = trace.step_s;
+  out.traction_W = trace.traction_W;
+  out.regen_W = trace.regen_W;
+  out.used_W = trace.used_W;
+}
+
+std::vector<int> given_departures(const fleet::FleetProblem& p, const py::object& departures_s,
                                   const py::object& headways_s) {
   if (!departures_s.is_none() && !headways_s.is_none()) {
     bad_argument("departures_s", "either departures_s or headways_s, not both", "both");
@@ -190,28 +238,73 @@ std::vector<int> given_departures(const FleetSetup& s, const py::object& departu
   } else if (!headways_s.is_none()) {
     std::vector<int> h;
     for (const auto& v : headways_s) h.push_back(whole(py::cast<double>(v), "headways_s"));
-    t = timetable::departures_from_headways(h);
+    t = fleet::departures_from_headways(h);
   } else {
-    t = timetable::departures_from_headways(timetable::uniform_headways(s.problem));
+    t = fleet::departures_from_headways(fleet::uniform_headways(p));
   }
-  const std::string why = timetable::departures_problem(s.problem, t);
+  const std::string why = fleet::departures_problem(p, t);
   if (!why.empty())
     bad_argument(departures_s.is_none() ? "headways_s" : "departures_s",
                  "departures that keep the problem", why);
   return t;
 }
 
-// ecorail.timetable.Fleet: the line's sections and the pattern, built once for many timetables.
-struct PyFleetLine {
-  FleetArgs args;
-  std::shared_ptr<FleetSetup> setup;
-};
+PyFleet evaluate_py(FleetState& state, const FleetArgs& a, const py::object& departures_s,
+                    const py::object& headways_s) {
+  const fleet::FleetProblem problem = fleet_problem(a);
+  // The departures are checked before the line's sections are built: bad ones fail fast.
+  const std::vector<int> departures = given_departures(problem, departures_s, headways_s);
+  PyFleet out;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(state.mutex);
+    const fleet::TimetableStudy& s = study_for(state, problem);
+    const fleet::StudyEvaluation e = s.evaluate(departures);
+    out.evaluation = e.evaluation;
+    out.report = output::timetable_evaluation_json(s, e);
+    add_trace(out, s, departures);
+  }
+  out.summary.termination = dp::Termination::CONVERGENCE;
+  return out;
+}
 
-PyFleetLine make_fleet(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
-  PyFleetLine f{a, std::make_shared<FleetSetup>()};
-  py::gil_scoped_release release;  // builds the line's sections and solves the pattern
-  *f.setup = setup_line(line, train, a);
-  return f;
+PyFleet optimise_py(FleetState& state, const FleetArgs& a, std::uint64_t seed, double time_limit_s,
+                    int restarts, long moves, double anneal_step_s, double gap,
+                    const py::object& progress) {
+  const fleet::FleetProblem problem = fleet_problem(a);
+  fleet::HeadwayOptimiserOptions o;
+  o.seed = seed;
+  o.time_limit_s = time_limit_s;
+  o.restarts = restarts;
+  o.moves_per_run = moves;
+  o.anneal_step_s = anneal_step_s;
+  o.gap_fraction = gap;
+  o.threads = a.engine.threads;
+  require_valid(o);
+  Interruptible guard(progress);
+  const dp::ProgressFn check = guard.callback();
+  o.progress = [&check](const fleet::OptimiserProgress& p) { check(p.stage.c_str(), 0, 0); };
+  PyFleet out;
+  std::string message;
+  guard.run([&] {
+    std::lock_guard<std::mutex> lock(state.mutex);
+    const fleet::TimetableStudy& s = study_for(state, problem);
+    // What TimetableStudy::optimise runs for headways alone, called here so that a failed
+    // search still gives its flagged result to ecorail.SolveError (the study throws instead).
+    fleet::StudyOptimisation r;
+    r.result = fleet::optimise_headways(s.model(), s.problem(), o);
+    out.evaluation = r.result.evaluation;
+    out.report = output::timetable_optimisation_json(s, r, seed);
+    const auto& sm = r.result.summary;
+    out.summary = {sm.termination, sm.BriefReport(), sm.FullReport(), {}};
+    message = sm.message;
+    if (sm.IsSolutionUsable()) add_trace(out, s, r.result.evaluation.departures_s);
+    return 0;
+  });
+  if (!out.summary.is_solution_usable()) {
+    raise_solve_error("the optimiser failed: " + message, py::cast(out));
+  }
+  return out;
 }
 
 // The fleet's arguments with the problem's own (trains, span, headways, peaks).
@@ -229,75 +322,8 @@ FleetArgs with_problem(const PyFleetLine& f, int trains, int span_s, Range headw
   return a;
 }
 
-PyFleet evaluate_py(const PyFleetLine& f, const FleetArgs& a, const py::object& departures_s,
-                    const py::object& headways_s) {
-  FleetSetup& s = *f.setup;
-  {
-    py::gil_scoped_release release;
-    set_problem(s, a);
-  }
-  const std::vector<int> departures = given_departures(s, departures_s, headways_s);
-  PyFleet out;
-  out.stage = "evaluate";
-  timetable::FleetEvaluation ev;
-  {
-    py::gil_scoped_release release;
-    ev = s.models->evaluate(departures);
-  }
-  out.summary.termination = dp::Termination::CONVERGENCE;
-  finish(out, s, ev);
-  return out;
-}
-
-PyFleet optimise_py(const PyFleetLine& f, const FleetArgs& a, std::uint64_t seed,
-                    double time_limit_s, int restarts, long moves, double anneal_step_s,
-                    const py::object& progress) {
-  FleetSetup& s = *f.setup;
-  {
-    py::gil_scoped_release release;
-    set_problem(s, a);
-  }
-  timetable::HeadwayOptimiserOptions o;
-  o.seed = seed;
-  o.time_limit_s = time_limit_s;
-  o.restarts = restarts;
-  o.moves_per_run = moves;
-  o.anneal_step_s = anneal_step_s;
-  o.threads = a.engine.threads;
-  require_valid(o);
-  Interruptible guard(progress);
-  const dp::ProgressFn check = guard.callback();
-  o.progress = [&check](const timetable::OptimiserProgress& p) { check(p.stage.c_str(), 0, 0); };
-  const timetable::HeadwayOptimiserResult result =
-      guard.run([&] { return timetable::optimise_headways(*s.models, o); });
-  const auto& sm = result.summary;
-  PyFleet out;
-  out.stage = "optimise";
-  out.summary = {sm.termination, sm.BriefReport(), sm.FullReport(), {}};
-  finish(out, s, result.evaluation);
-  if (std::isfinite(sm.bound_substation_J)) {
-    out.report["bound_substation_kJ"] = sm.bound_substation_J / 1e3;
-    out.report["gap_fraction_of_substation"] = sm.gap_fraction;
-  } else if (std::isfinite(sm.bound_used_regen_J)) {
-    out.report["bound_used_regen_kJ"] = sm.bound_used_regen_J / 1e3;
-    out.report["gap_fraction_of_substation"] = sm.gap_fraction;
-    if (sm.pair_sum_J > 0.0) out.report["pair_sum_of_result_kJ"] = sm.pair_sum_J / 1e3;
-  }
-  out.report["summary"] = {{"termination", std::string(dp::termination_name(sm.termination))},
-                           {"method", sm.method},
-                           {"exact", sm.exact},
-                           {"seed", seed},
-                           {"moves", sm.moves},
-                           {"wall_s", sm.wall_s},
-                           {"brief_report", sm.BriefReport()}};
-  if (!sm.IsSolutionUsable()) {
-    raise_solve_error("the optimiser failed: " + sm.message, py::cast(out));
-  }
-  return out;
-}
-
-std::vector<double> per_train(const timetable::FleetEvaluation& ev,
-                              double (*f)(const timetable::FleetEnergy&)) {
+std::vector<double> per_train(const energy::FleetEvaluation& ev,
+                              double (*f)(const energy::FleetEnergy&)) {
   std::vector<double> v;
   for (const auto& e : ev.per_train) v.push_back(f(e) / 1e3);
   return v;
@@ -375,7 +401,7 @@ void bind_timetable(py::module_& m) {
           "per_train_substation_kJ",
           [](const PyFleet& f) {
             return to_numpy(per_train(
-                f.evaluation, [](const timetable::FleetEnergy& e) { return e.substation_J(); }));
+                f.evaluation, [](const energy::FleetEnergy& e) { return e.substation_J(); }));
           },
           "Substation energy of each train, kJ (float64).")
       .def_property_readonly(
@@ -422,7 +448,7 @@ void bind_timetable(py::module_& m) {
           [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
              int trains, int span_s, Range headway_s, Range dwell_range_s, std::vector<Range> peaks,
              Range peak_headway_s, Range offpeak_headway_s) {
-            return evaluate_py(f,
+            return evaluate_py(*f.state,
                                with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                             std::move(peaks), peak_headway_s, offpeak_headway_s),
                                departures_s, headways_s);
@@ -438,18 +464,18 @@ void bind_timetable(py::module_& m) {
           [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
              std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
              std::uint64_t seed, double time_limit_s, int restarts, long moves,
-             double anneal_step_s, const py::object& progress) {
-            return optimise_py(f,
+             double anneal_step_s, double gap, const py::object& progress) {
+            return optimise_py(*f.state,
                                with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                             std::move(peaks), peak_headway_s, offpeak_headway_s),
-                               seed, time_limit_s, restarts, moves, anneal_step_s, progress);
+                               seed, time_limit_s, restarts, moves, anneal_step_s, gap, progress);
           },
           py::kw_only(), py::arg("trains") = 100, py::arg("span_s") = 63900,
           py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
           py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
           py::arg("offpeak_headway_s") = Range{300, 660}, py::arg("seed") = 1,
           py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("moves") = 2000000L,
-          py::arg("anneal_step_s") = 1.0, py::arg("progress") = py::none(),
+          py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4, py::arg("progress") = py::none(),
           "ecorail.timetable.optimise on this fleet's sections and pattern.");
 
   tt.def(
@@ -464,7 +490,7 @@ void bind_timetable(py::module_& m) {
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return evaluate_py(make_fleet(line, train, a), a, departures_s, headways_s);
+        return evaluate_py(*fleet_state(line, train, a), a, departures_s, headways_s);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("departures_s") = py::none(),
       py::arg("headways_s") = py::none(), py::arg("model") = "power-flow",
@@ -487,14 +513,14 @@ void bind_timetable(py::module_& m) {
          py::object power_supply, int trains, int span_s, Range headway_s, double trip_time_s,
          double dwell_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
          Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, long moves,
-         double anneal_step_s, double ds_m, double dv_kmh, int threads,
+         double anneal_step_s, double gap, double ds_m, double dv_kmh, int threads,
          const py::object& progress) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return optimise_py(make_fleet(line, train, a), a, seed, time_limit_s, restarts, moves,
-                           anneal_step_s, progress);
+        return optimise_py(*fleet_state(line, train, a), a, seed, time_limit_s, restarts, moves,
+                           anneal_step_s, gap, progress);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
       py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
@@ -504,13 +530,15 @@ void bind_timetable(py::module_& m) {
       py::arg("dwell_range_s") = Range{30, 45}, py::arg("peaks") = std::vector<Range>{},
       py::arg("peak_headway_s") = Range{120, 150}, py::arg("offpeak_headway_s") = Range{300, 660},
       py::arg("seed") = 1, py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2,
-      py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("ds_m") = 5.0,
-      py::arg("dv_kmh") = 0.2, py::arg("threads") = 0, py::arg("progress") = py::none(),
+      py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4,
+      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
+      py::arg("progress") = py::none(),
       (std::string("The headways that minimise substation energy, as `ecorail timetable "
                    "optimise`: exact DPs for the overlap models, annealing (restarts, moves, "
                    "seed, anneal_step_s, time_limit_s in s; 0: none) + polish + a bound for "
-                   "power-flow. A search stopped by time_limit_s is NO_CONVERGENCE with its "
-                   "gap.") +
+                   "power-flow. CONVERGENCE only when the proven gap is at most gap (a fraction of "
+                   "the substation energy); a search stopped by time_limit_s or its moves with a "
+                   "larger gap is NO_CONVERGENCE with its gap.") +
        kFleetDoc)
           .c_str());
 }

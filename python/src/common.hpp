@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "data/line.hpp"
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/termination.hpp"
 #include "output/solve_reports.hpp"
