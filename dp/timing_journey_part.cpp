@@ -431,6 +431,15 @@ class PartSolver {
         }
       }
     }
+    if (end_.moving && end_.reaches_end(run.sim) && (ok || binding_.empty())) {
+      // Also when the search ended more than kMaxTrim_s from the arrival: the trim here reaches
+      // further, and the run is kept only as the windows check it on the re-simulation.
+      meet_end_exactly(run);
+      if (!ok && binding_.empty() && end_(run.sim) &&
+          std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s) {
+        ok = true;
+      }
+    }
     if (end_.moving && binding_.empty() && !arrival_at_floor_ && end_(run.sim) &&
         run.sim.running_time_s < target_s_ - options_.time_tolerance_s &&
         run.sim.running_time_s >= earliest_arrival_s_ - options_.time_tolerance_s) {
@@ -444,7 +453,6 @@ class PartSolver {
           "the run may not be the least-energy one",
           target_s_ - run.sim.running_time_s));
     }
-    if (ok && end_.moving) meet_end_exactly(run);
     *met = ok;
     return run;
   }
@@ -463,10 +471,12 @@ class PartSolver {
     for (int round = 0; round < 4; ++round) {
       if (one_speed) fix_end_speed(run, end_.min_ms);
       const double late = arrival(run.sim);
-      const bool binds = !arrival_at_floor_ && std::abs(late) <= kMaxTrim_s;
+      // (The running time of a run that ends moving is ragged in its price by up to seconds:
+      // the trim takes a miss of up to kMovingEndTrim_s.)
+      const bool binds = !arrival_at_floor_ && std::abs(late) <= kMovingEndTrim_s;
       if (binds && std::abs(late) > kExactTime_s) {
         evaluations_ += trim_switch(engine_, end_, run, 0.0, engine_.route().length_m(), arrival,
-                                    0.5 * kExactTime_s);
+                                    0.5 * kExactTime_s, kMovingEndTrim_s);
       }
       const bool time_ok = !binds || std::abs(arrival(run.sim)) <= kExactTime_s;
       const bool speed_ok =
@@ -679,6 +689,7 @@ class PartSolver {
   static constexpr int kOuterBudget = 25;
   static constexpr int kMaxCycles = 6;  // of the searches for several binding points
   static constexpr double kInside_s = 0.1;
+  static constexpr double kMovingEndTrim_s = 5.0;
   // What "exactly" means for a window of zero width (docs/ttobench.md).
   static constexpr double kExactTime_s = kZeroWidthTime_s;
   static constexpr double kExactSpeed_ms = kZeroWidthSpeed_ms;

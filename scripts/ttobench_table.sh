@@ -12,8 +12,8 @@
 #   scripts/ttobench_table.sh build/ecorail ../shared/data/ttobench --ds 10 --dv 0.5
 #
 # Environment: TRAINS="A B" limits the trains (file names without .json, default: all of
-# TTOBENCH_DIR/trains), TRACKS="x y" the tracks, JOURNEYS=0 leaves the journeys out, TRACK_RUNS=0
-# the track rows.
+# TTOBENCH_DIR/trains), TRACKS="x y" the tracks, JOURNEYS=0 leaves the journeys out,
+# JOURNEY_MATCH='glob' keeps the journeys whose id matches, TRACK_RUNS=0 leaves the track rows out.
 set -euo pipefail
 bin=${1:?usage: ttobench_table.sh ECORAIL [TTOBENCH_DIR] [flags...]}
 dir=${2:-$(dirname "$0")/../../shared/data/ttobench}
@@ -31,8 +31,10 @@ stops_of() {
 }
 now() { date +%s.%N; }
 since() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$1" "$(now)"; }
-# The first line of an error, shortened for a table cell (pipes escaped).
-why() { grep -m1 -E "error|ecorail:" "$1" | sed 's/^ecorail: //; s/|/\\|/g' | cut -c1-140; }
+# The first line of an error, shortened for a table cell (what was expected, pipes escaped).
+why() {
+  grep -m1 -E "error|ecorail:" "$1" | sed 's/^ecorail: //; s/.*expected //; s/|/\\|/g' | cut -c1-220
+}
 # traction kJ | net kJ | running time s | windows met, from a solve's JSON report.
 figures() {
   python3 - "$1" <<'PY'
@@ -98,6 +100,8 @@ if [ "${JOURNEYS:-1}" != 0 ]; then
   for journey in "$dir"/journeys/*.json "$repo"/data/ttobench/*[Jj]ourney*.json; do
     [ -f "$journey" ] || continue
     jid=$(basename "$journey" .json)
+    # shellcheck disable=SC2254
+    case "$jid" in ${JOURNEY_MATCH:-*}) ;; *) continue ;; esac
     track_id=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["metadata"]["associated track"])' "$journey")
     train=$(journey_train "$jid")
     [ -n "$train" ] || { echo "| $track_id | (no train) | journey $jid | | | | | |"; continue; }
