@@ -27,7 +27,6 @@ void bad(const std::string& flag, const std::string& expected) {
   throw data::InputError("command line", 0, flag, expected);
 }
 
-// "A:B" as two numbers, A <= B.
 std::pair<double, double> parse_range(const std::string& text, const std::string& flag) {
   const auto colon = text.find(':');
   if (colon == std::string::npos) bad(flag, "a range MIN:MAX; got '" + text + "'");
@@ -119,8 +118,6 @@ energy::EnergyModelOptions model_options(const TimetableArgs& a) {
   return o;
 }
 
-// Departures from --headways FILE (column headway_s), --departures FILE (column departure_s) or
-// uniform; each value a whole number of seconds.
 std::vector<int> read_departures(const TimetableArgs& a, const fleet::FleetProblem& p) {
   if (!a.headways_file.empty() && !a.departures_file.empty())
     bad("--headways", "either --headways or --departures, not both");
