@@ -47,6 +47,7 @@ struct DelayArgs {
   std::string cache_dir;
   bool no_cache = false;
   bool full_report = false;
+  bool quiet = false;
   std::string json, csv, svg;
 };
 
@@ -243,6 +244,8 @@ void run_delay(const DelayArgs& a) {
   if (static_cast<std::size_t>(a.train) > plan.trains.size())
     bad("--train", "a train from 1 to " + std::to_string(plan.trains.size()) + "; got " +
                        std::to_string(a.train));
+  StageProgress progress("ecorail delay", a.quiet);
+  options.progress = progress.callback();
   output::FileFrontierStore store(cache_directory(a.cache_dir));
   recovery::DelayRecoveryResult r;
   try {
@@ -311,6 +314,7 @@ void add_delay_command(CLI::App& app) {
   add_plan_engine_options(cmd, args->problem, args->frontier_span_s, args->cache_dir,
                           args->no_cache);
   cmd->add_flag("--full-report", args->full_report, "print the full report");
+  cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
   cmd->add_option("--json", args->json, "write the recovery as JSON ('-': standard output)");
   cmd->add_option("--csv", args->csv, "write the recovery sections as CSV ('-': standard output)");
   cmd->add_option("--svg", args->svg, "write the recovery's speed profile (SVG)");

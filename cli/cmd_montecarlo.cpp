@@ -311,7 +311,7 @@ void run_montecarlo(const MonteCarloArgs& a) {
   if (a.reference) plan = reference_plan_on(library, stops);
   output::FileFrontierStore store(cache_directory(a.cache_dir));
   output::FileSectionRunStore run_store(cache_directory(a.cache_dir) / "section-runs");
-  Progress progress("ecorail montecarlo", a.quiet);
+  StageProgress progress("ecorail montecarlo", a.quiet);
   auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<recovery::SectionRuns> runs;
   std::unique_ptr<recovery::MonteCarlo> mc;
@@ -330,10 +330,9 @@ void run_montecarlo(const MonteCarloArgs& a) {
   if (a.adjust) {
     recovery::PlanAdjustmentResult r =
         recovery::adjust_plan(library, plan, o, *runs, adj,
-                              progress.enabled() ? std::function<void(int, int)>([&](int d, int t) {
+                              std::function<void(int, int)>([&](int d, int t) {
                                 progress.update("candidate plan", d, t);
-                              })
-                                                 : std::function<void(int, int)>());
+                              }));
     std::FILE* out = a.json == "-" ? stderr : stdout;
     std::fputs(r.summary.FullReport().c_str(), out);
     std::fprintf(out, "  %5s %6s %6s %10s %10s %10s %8s %16s %16s %16s\n", "theta", "dwell+",
@@ -382,11 +381,10 @@ void run_montecarlo(const MonteCarloArgs& a) {
   const auto [first, last] =
       recovery::shard_days(static_cast<std::uint64_t>(a.days), shard.first, shard.second);
   const recovery::DayRecord plan_day = mc->plan_day();
+  progress.update("day", 0, static_cast<int>(last - first));
   std::vector<recovery::DayRecord> days = mc->run_days(
       first, last, a.problem.threads,
-      progress.enabled()
-          ? std::function<void(int, int)>([&](int d, int t) { progress.update("day", d, t); })
-          : std::function<void(int, int)>());
+      std::function<void(int, int)>([&](int d, int t) { progress.update("day", d, t); }));
   recovery::MonteCarloRun run;
   run.stations = plan.stations;
   run.histogram = recovery::pooled_histogram(days);

@@ -75,6 +75,8 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
   bool last_held = false;
   for (std::size_t f = train + 1;
        f < plan.trains.size() && static_cast<int>(f - train) <= options.max_followers; ++f) {
+    dp::report_progress(options.progress, "follower", static_cast<int>(f - train - 1),
+                        options.max_followers);
     std::vector<physics::ControlProgram> programs;
     std::vector<physics::SimulationResult> sims;
     for (std::size_t j = 0; j < n; ++j) {
