@@ -193,10 +193,10 @@ void check_targets(const MonteCarloArgs& a, bool adjust) {
 
 // Refuses a run whose day records would not fit in memory, before anything is allocated.
 void check_day_memory(std::uint64_t days, std::size_t stations) {
-  const double need = static_cast<double>(days) *
-                      static_cast<double>(recovery::day_memory_bytes(stations));
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
-                      static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double need =
+      static_cast<double>(days) * static_cast<double>(recovery::day_memory_bytes(stations));
+  const double have =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
   if (have > 0.0 && need > 0.5 * have) {
     char buf[300];
     std::snprintf(buf, sizeof buf,
@@ -328,11 +328,10 @@ void run_montecarlo(const MonteCarloArgs& a) {
   const std::string plan_name =
       a.reference ? "reference" : std::filesystem::path(a.plan_file).filename().string();
   if (a.adjust) {
-    recovery::PlanAdjustmentResult r =
-        recovery::adjust_plan(library, plan, o, *runs, adj,
-                              std::function<void(int, int)>([&](int d, int t) {
-                                progress.update("candidate plan", d, t);
-                              }));
+    recovery::PlanAdjustmentResult r = recovery::adjust_plan(
+        library, plan, o, *runs, adj, std::function<void(int, int)>([&](int d, int t) {
+          progress.update("candidate plan", d, t);
+        }));
     std::FILE* out = a.json == "-" ? stderr : stdout;
     std::fputs(r.summary.FullReport().c_str(), out);
     std::fprintf(out, "  %5s %6s %6s %10s %10s %10s %8s %16s %16s %16s\n", "theta", "dwell+",

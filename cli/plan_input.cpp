@@ -137,7 +137,9 @@ void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& fro
 }
 
 StageProgress::StageProgress(std::string label, bool quiet)
-    : line_(label, quiet), label_(std::move(label)), lines_(!quiet && !Progress::stderr_is_terminal()) {}
+    : line_(label, quiet),
+      label_(std::move(label)),
+      lines_(!quiet && !Progress::stderr_is_terminal()) {}
 
 void StageProgress::update(const char* stage, int done, int total) {
   line_.update(stage, done, total);
