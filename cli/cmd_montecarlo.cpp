@@ -193,10 +193,10 @@ void check_targets(const MonteCarloArgs& a, bool adjust) {
 
 // Refuses a run whose day records would not fit in memory, before anything is allocated.
 void check_day_memory(std::uint64_t days, std::size_t stations) {
-  const double need = static_cast<double>(days) *
-                      static_cast<double>(recovery::day_memory_bytes(stations));
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) *
-                      static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double need =
+      static_cast<double>(days) * static_cast<double>(recovery::day_memory_bytes(stations));
+  const double have =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
   if (have > 0.0 && need > 0.5 * have) {
     char buf[300];
     std::snprintf(buf, sizeof buf,
@@ -311,7 +311,7 @@ void run_montecarlo(const MonteCarloArgs& a) {
   if (a.reference) plan = reference_plan_on(library, stops);
   output::FileFrontierStore store(cache_directory(a.cache_dir));
   output::FileSectionRunStore run_store(cache_directory(a.cache_dir) / "section-runs");
-  Progress progress("ecorail montecarlo", a.quiet);
+  StageProgress progress("ecorail montecarlo", a.quiet);
   auto wall0 = std::chrono::steady_clock::now();
   std::unique_ptr<recovery::SectionRuns> runs;
   std::unique_ptr<recovery::MonteCarlo> mc;
@@ -328,12 +328,10 @@ void run_montecarlo(const MonteCarloArgs& a) {
   const std::string plan_name =
       a.reference ? "reference" : std::filesystem::path(a.plan_file).filename().string();
   if (a.adjust) {
-    recovery::PlanAdjustmentResult r =
-        recovery::adjust_plan(library, plan, o, *runs, adj,
-                              progress.enabled() ? std::function<void(int, int)>([&](int d, int t) {
-                                progress.update("candidate plan", d, t);
-                              })
-                                                 : std::function<void(int, int)>());
+    recovery::PlanAdjustmentResult r = recovery::adjust_plan(
+        library, plan, o, *runs, adj, std::function<void(int, int)>([&](int d, int t) {
+          progress.update("candidate plan", d, t);
+        }));
     std::FILE* out = a.json == "-" ? stderr : stdout;
     std::fputs(r.summary.FullReport().c_str(), out);
     std::fprintf(out, "  %5s %6s %6s %10s %10s %10s %8s %16s %16s %16s\n", "theta", "dwell+",
@@ -382,11 +380,10 @@ void run_montecarlo(const MonteCarloArgs& a) {
   const auto [first, last] =
       recovery::shard_days(static_cast<std::uint64_t>(a.days), shard.first, shard.second);
   const recovery::DayRecord plan_day = mc->plan_day();
+  progress.update("day", 0, static_cast<int>(last - first));
   std::vector<recovery::DayRecord> days = mc->run_days(
       first, last, a.problem.threads,
-      progress.enabled()
-          ? std::function<void(int, int)>([&](int d, int t) { progress.update("day", d, t); })
-          : std::function<void(int, int)>());
+      std::function<void(int, int)>([&](int d, int t) { progress.update("day", d, t); }));
   recovery::MonteCarloRun run;
   run.stations = plan.stations;
   run.histogram = recovery::pooled_histogram(days);

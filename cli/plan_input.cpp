@@ -1,5 +1,7 @@
 #include "cli/plan_input.hpp"
 
+#include <cstdio>
+
 #include <cmath>
 #include <map>
 
@@ -135,6 +137,25 @@ void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& fro
   cmd->add_option("--cache-dir", cache_dir,
                   "frontier cache directory (default: $XDG_CACHE_HOME/ecorail/frontiers)");
   cmd->add_flag("--no-cache", no_cache, "compute every frontier afresh");
+}
+
+StageProgress::StageProgress(std::string label, bool quiet)
+    : line_(label, quiet),
+      label_(std::move(label)),
+      lines_(!quiet && !Progress::stderr_is_terminal()) {}
+
+void StageProgress::update(const char* stage, int done, int total) {
+  line_.update(stage, done, total);
+  if (!lines_) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (last_stage_ == stage) return;
+  last_stage_ = stage;
+  std::fprintf(stderr, "%s: %s\n", label_.c_str(), stage);
+  std::fflush(stderr);
+}
+
+dp::ProgressFn StageProgress::callback() {
+  return [this](const char* stage, int done, int total) { update(stage, done, total); };
 }
 
 }  // namespace ecorail::cli

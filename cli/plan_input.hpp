@@ -8,10 +8,12 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "cli/problem_options.hpp"
+#include "cli/progress.hpp"
 #include "data/line.hpp"
 #include "dp/section_library.hpp"
 #include "recovery/plan.hpp"
@@ -48,6 +50,23 @@ recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
 void add_plan_source_options(CLI::App* cmd, std::string& plan_file, bool& reference);
 void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& frontier_span_s,
                              std::string& cache_dir, bool& no_cache);
+// Progress of the delay commands: the progress line on a terminal (cli/progress.hpp) and, off a
+// terminal, one line per stage on stderr ("ecorail delay: followers"), so that a log shows
+// where a long run is; nothing with --quiet.
+class StageProgress {
+ public:
+  StageProgress(std::string label, bool quiet);
+  void update(const char* stage, int done, int total);
+  dp::ProgressFn callback();
+
+ private:
+  Progress line_;
+  std::string label_;
+  bool lines_;
+  std::string last_stage_;
+  std::mutex mutex_;
+};
+
 // --cache-dir, or the frontier cache's default directory when it is empty.
 std::filesystem::path cache_directory(const std::string& cache_dir);
 

@@ -109,6 +109,7 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
   sm.delay_s = delay_s;
   const double late_departure = st.departure_s[station] + delay_s;
 
+  dp::report_progress(options.progress, "recovery", 0, 1);
   // 1. The earliest station back on time: flat out with minimum dwells, never leaving early.
   const std::size_t e = detail::earliest_station_back(st, times, station, late_departure, delay_s);
   const bool recoverable = e <= n;
@@ -149,6 +150,7 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
     sm.warnings.push_back(buf);
   }
 
+  dp::report_progress(options.progress, "recovery", 1, 1);
   // 5. The late train as an affected train, and the followers under the separation cap.
   AffectedTrain self;
   self.train = static_cast<int>(train);

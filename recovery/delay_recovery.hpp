@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "dp/progress.hpp"
 #include "dp/section_library.hpp"
 #include "dp/termination.hpp"
 #include "physics/trip.hpp"
@@ -53,6 +54,9 @@ struct DelayRecoveryOptions {
   // Separation (the cap) and how a held-up follower is driven: it waits at the stop, then runs
   // the section faster for the time left (FollowerMode::Wait, delay_service_options()).
   service::ServiceOptions service = delay_service_options();
+  // Told "recovery" (the late train; 0 of 1, then 1 of 1) and "follower" (done of
+  // max_followers) as the work goes; may be empty.
+  dp::ProgressFn progress;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };

@@ -10,7 +10,9 @@ namespace ecorail::recovery::detail {
 
 namespace {
 
-double kJ(const physics::SimulationResult& sim) { return sim.energy.traction_work_J / 1e3; }
+double kJ(const physics::SimulationResult& sim) {
+  return sim.energy.traction_work_J / 1e3;
+}
 
 }  // namespace
 
@@ -32,12 +34,12 @@ const Run& RunCache::get(std::size_t k, double time_s) {
     if (!sol.search.converged || !dp::run_arrives(sim) ||
         std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
       char buf[300];
-      std::snprintf(
-          buf, sizeof buf,
-          "section %zu (%s): no run meets the running time %.3f s (got %.3f s); "
-          "nothing is reported",
-          k + 1, (library_.route(k).from_name() + " -> " + library_.route(k).to_name()).c_str(),
-          time_s, sim.running_time_s);
+      std::snprintf(buf, sizeof buf,
+                    "section %zu (%s): no run meets the running time %.3f s (got %.3f s); "
+                    "nothing is reported",
+                    k + 1,
+                    (library_.route(k).from_name() + " -> " + library_.route(k).to_name()).c_str(),
+                    time_s, sim.running_time_s);
       throw std::runtime_error(buf);
     }
     run->sim = sim;
@@ -71,7 +73,6 @@ AffectedTrain lateness_of(int train, const physics::Trip& trip, const TrainStops
   }
   return a;
 }
-
 
 TrainTimes train_times(const dp::SectionLibrary& library, const Plan& plan, std::size_t train,
                        const DelayRecoveryOptions& options) {
@@ -195,7 +196,7 @@ RecoveryTimes split_recovery_time(const dp::SectionLibrary& library, const Plan&
       t_new[e - 1] = std::clamp(r[e - 1], std::max(m[e - 1], c.t_min_s()), c.t_max_s());
       marginal[e - 1] = c.marginal_at(t_new[e - 1]);
       out.warnings.push_back("the train waits at " + plan.stations[e - 1] +
-                            " for its timetabled departure (no early departure)");
+                             " for its timetabled departure (no early departure)");
     }
   }
   return out;

@@ -43,11 +43,13 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
       out.sections.empty())
     return;
   const service::SeparationOptions& sep = options.service.separation;
-  const double b = sep.braking_m_s2 > 0.0 ? sep.braking_m_s2
-                                          : service::default_separation_braking_m_s2(library.train());
+  const double b = sep.braking_m_s2 > 0.0
+                       ? sep.braking_m_s2
+                       : service::default_separation_braking_m_s2(library.train());
   auto planned_runs = [&](std::size_t k) {
     std::vector<const physics::SimulationResult*> runs;
-    for (std::size_t j = 0; j < n; ++j) runs.push_back(&cache.get(j, plan.running_time_s(k, j)).sim);
+    for (std::size_t j = 0; j < n; ++j)
+      runs.push_back(&cache.get(j, plan.running_time_s(k, j)).sim);
     return runs;
   };
   auto planned_dwells = [&](std::size_t k) {
@@ -75,6 +77,8 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
   bool last_held = false;
   for (std::size_t f = train + 1;
        f < plan.trains.size() && static_cast<int>(f - train) <= options.max_followers; ++f) {
+    dp::report_progress(options.progress, "follower", static_cast<int>(f - train - 1),
+                        options.max_followers);
     std::vector<physics::ControlProgram> programs;
     std::vector<physics::SimulationResult> sims;
     for (std::size_t j = 0; j < n; ++j) {
@@ -86,15 +90,15 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
       programs.push_back(run.program);
       sims.push_back(run.sim);
     }
-    const service::ServicePlan fplan = service::plan_from_runs(library, std::move(programs),
-                                                               std::move(sims), planned_dwells(f));
+    const service::ServicePlan fplan =
+        service::plan_from_runs(library, std::move(programs), std::move(sims), planned_dwells(f));
     const double departure = plan.trains[f].departure_s[0];
     const physics::Trip follower_plan = fplan.trip.shifted(departure);
-    const service::SeparationScan base = service::scan_separation(leader_plan, follower_plan, b, sep);
+    const service::SeparationScan base =
+        service::scan_separation(leader_plan, follower_plan, b, sep);
     std::vector<service::CapEvent> events;
-    service::FollowerRun run = service::drive_follower(library, fplan, leader, departure,
-                                                       options.service, b, static_cast<int>(f),
-                                                       &events);
+    service::FollowerRun run = service::drive_follower(
+        library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events);
     FollowerCheck fc;
     fc.train = static_cast<int>(f);
     fc.behind = static_cast<int>(f - 1);
@@ -120,7 +124,8 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     if (at.back_on_time_at.empty())
       sm.warnings.push_back("train " + std::to_string(f + 1) +
                             ", held up behind the late train, is not back on time by the last "
-                            "station (" + two_decimals(at.final_lateness_s) + " s late)");
+                            "station (" +
+                            two_decimals(at.final_lateness_s) + " s late)");
     sm.cascade_final_lateness_s = std::max(0.0, at.lateness_s.back());
     out.trains.push_back(at);
     out.train_trips.push_back(run.trip);

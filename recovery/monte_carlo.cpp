@@ -41,12 +41,10 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
     return false;
   };
   if (!delays.IsValid(error)) return false;
-  if (!(early_s >= 0.0 && early_s <= 600.0))
-    return fail("--early must lie in [0, 600] s");
+  if (!(early_s >= 0.0 && early_s <= 600.0)) return fail("--early must lie in [0, 600] s");
   if (!(run_early_s >= 0.0 && run_early_s <= early_s))
     return fail("--run-early must lie in [0, --early] s");
-  if (!(min_dwell_s >= 0.0 && min_dwell_s < 1e5))
-    return fail("--min-dwell must lie in [0, 1e5) s");
+  if (!(min_dwell_s >= 0.0 && min_dwell_s < 1e5)) return fail("--min-dwell must lie in [0, 1e5) s");
   if (!(takeover_s > 0.0 && takeover_s <= 86400.0))
     return fail("--takeover must lie in (0, 86400] s");
   if (!(punctual_s >= 0.0 && punctual_s <= 3600.0))

@@ -300,18 +300,17 @@ MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards,
   }
   std::vector<std::size_t> order(out.days.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return out.days[a].day < out.days[b].day;
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return out.days[a].day < out.days[b].day; });
   std::vector<DayRecord> sorted;
   sorted.reserve(order.size());
   const std::uint64_t total = out.config.at("days").get<std::uint64_t>();
   for (std::size_t i = 0; i < order.size(); ++i) {
     const DayRecord& d = out.days[order[i]];
     if (i > 0 && d.day == sorted.back().day)
-      throw std::invalid_argument(name(owner[order[i]]) + ": every day of the run exactly once; day " +
-                                  std::to_string(d.day) + " is also in " +
-                                  name(owner[order[i - 1]]));
+      throw std::invalid_argument(
+          name(owner[order[i]]) + ": every day of the run exactly once; day " +
+          std::to_string(d.day) + " is also in " + name(owner[order[i - 1]]));
     if (d.day >= total)
       throw std::invalid_argument(name(owner[order[i]]) + ": days of the run (0 to " +
                                   std::to_string(total) + "); it holds day " +
@@ -333,8 +332,7 @@ MonteCarloRun merge_runs(const std::vector<MonteCarloRun>& shards,
 
 std::size_t day_memory_bytes(std::size_t stations) {
   // The record, its per-station counts and histogram, and about 1 KB of JSON per day.
-  return sizeof(DayRecord) + sizeof(std::int64_t) * (2 * stations + kLatenessHistogramBins) +
-         1024;
+  return sizeof(DayRecord) + sizeof(std::int64_t) * (2 * stations + kLatenessHistogramBins) + 1024;
 }
 
 std::pair<std::uint64_t, std::uint64_t> shard_days(std::uint64_t total, int index, int count) {

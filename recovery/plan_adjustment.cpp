@@ -17,16 +17,13 @@ bool PlanAdjustmentOptions::IsValid(std::string* error) const {
   for (double t : thetas)
     if (!(t >= 0.0 && t <= 1.0)) return fail("--thetas must lie in [0, 1]");
   for (double x : extra_dwells_s)
-    if (!(x >= 0.0 && x <= 60.0))
-      return fail("--extra-dwells must lie in [0, 60] s");
+    if (!(x >= 0.0 && x <= 60.0)) return fail("--extra-dwells must lie in [0, 60] s");
   if (run_early_s.empty()) return fail("PlanAdjustmentOptions: at least one run_early_s");
   for (double b : run_early_s)
-    if (!(b >= 0.0 && b <= 600.0))
-      return fail("--run-early-values must lie in [0, 600] s");
+    if (!(b >= 0.0 && b <= 600.0)) return fail("--run-early-values must lie in [0, 600] s");
   if (!(max_dwell_s > 0.0 && max_dwell_s <= 600.0))
     return fail("the longest dwell of --adjust must lie in (0, 600] s");
-  if (search_days < 2 || search_days > 1000000)
-    return fail("--search-days must lie in [2, 1e6]");
+  if (search_days < 2 || search_days > 1000000) return fail("--search-days must lie in [2, 1e6]");
   if (!(target_punctuality >= 0.0 && target_punctuality <= 1.0))
     return fail("--target must lie in [0, 1]");
   if (threads < 0) return fail("--threads must be >= 0");

@@ -168,8 +168,8 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
           best_arrival - earliest_arrival > std::max(kEarlierBy_s, options.redrive_gain_s)) {
         // The planned control braked by the supervisor, leaving now: reported in both modes
         // (what the cap alone would do), driven in the supervised one.
-        physics::SimulationResult sup = drive_planned(engine, plan.programs[i], plan.runs[i], cap,
-                                                      start, options.resim_step_m);
+        physics::SimulationResult sup =
+            drive_planned(engine, plan.programs[i], plan.runs[i], cap, start, options.resim_step_m);
         ev.supervised_cost_J = engine.energy_cost_J(sup);
         ev.supervised_late_s = start + sup.running_time_s - planned_arrival;
         if (options.mode == FollowerMode::Supervised) {

@@ -26,13 +26,13 @@
 namespace ecorail::service {
 
 struct FollowerRun {
-  physics::Trip trip;             // the actual run, on the clock
-  bool held_up = false;           // its planned run would come closer than the braking distance
-  double station_wait_s = 0.0;    // waited at stops for the line ahead to clear, in total
-  int sections_redriven = 0;      // sections run other than as planned
-  std::vector<double> late_s;     // arrival lateness at each stop (0 at the first: departure)
-  SeparationScan planned_scan;    // the planned run against the train ahead
-  SeparationScan scan;            // the actual run against the train ahead
+  physics::Trip trip;           // the actual run, on the clock
+  bool held_up = false;         // its planned run would come closer than the braking distance
+  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
+  int sections_redriven = 0;    // sections run other than as planned
+  std::vector<double> late_s;   // arrival lateness at each stop (0 at the first: departure)
+  SeparationScan planned_scan;  // the planned run against the train ahead
+  SeparationScan scan;          // the actual run against the train ahead
 };
 
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a

@@ -27,6 +27,8 @@ double default_separation_braking_m_s2(const physics::Train& train) {
 LeaderTrack::LeaderTrack(const physics::Trip& leader) : trip_(leader) {}
 
 double LeaderTrack::position_m(double t_s) const {
+  if (trip_.empty() || trip_.samples().empty())
+    return std::numeric_limits<double>::infinity();  // no leader on the line
   const auto& samples = trip_.samples();
   const double t = t_s - trip_.departure_s();
   if (t <= 0.0) return samples.front().s_m;

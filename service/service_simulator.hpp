@@ -85,7 +85,7 @@ struct CapEvent {
   std::string report;               // the capped DP's brief report
   // What the follower did (service/follower.hpp): the wait at the stop that keeps its planned
   // run clear of the train ahead, the lateness that wait gives, how the section was driven
-    // ("waited": the wait, then the planned run; "waited, then faster": the wait, then the
+  // ("waited": the wait, then the planned run; "waited, then faster": the wait, then the
   // section library's run for the time left; "reoptimised" or "supervised": leaving earlier
   // under the cap) and its arrival's lateness.
   double station_wait_s = 0.0;

@@ -89,7 +89,11 @@ expect_error "broken.csv" delay --plan broken.csv --train 1 --station A7 --delay
 "$ecorail" timetable evaluate --from A6 --to A9 --trip-time 380 --trains 3 --span 240 \
   --headway 120:660 --csv close.csv --quiet > /dev/null || { echo "FAIL: close plan"; fail=1; }
 "$ecorail" delay --plan close.csv --train 1 --station A7 --delay 5000 --followers 2 \
-  "${cache[@]}" --json long.json > long.txt || { echo "FAIL: long delay"; cat long.txt; fail=1; }
+  "${cache[@]}" --json long.json > long.txt 2> long_err.txt \
+  || { echo "FAIL: long delay"; cat long.txt long_err.txt; fail=1; }
+# Off a terminal, one line per stage on stderr (nothing with --quiet).
+grep -qx "ecorail delay: recovery" long_err.txt && grep -qx "ecorail delay: follower" long_err.txt \
+  || { echo "FAIL: no stage lines off a terminal"; cat long_err.txt; fail=1; }
 python3 - <<'PY' || fail=1
 import csv, json
 d = json.load(open("long.json"))

@@ -129,6 +129,11 @@ expect_error "--svg-prefix" "${run[@]}" --svg-prefix nodir/p
 expect_error "days" montecarlo merge s1.json --json x.json
 expect_error "--early" "${run[@]}" --early -1 --json x.json
 expect_error "--run-early" "${run[@]}" --run-early 11 --json x.json
+# Off a terminal, one line per stage on stderr.
+"$ecorail" montecarlo --plan plan.csv --days 2 --seed 4 "${cache[@]}" > /dev/null 2> stages.txt \
+  || { echo "FAIL: stages run"; fail=1; }
+grep -qx "ecorail montecarlo: day" stages.txt || { echo "FAIL: no stage line"; cat stages.txt; fail=1; }
+[ "$(grep -c . stages.txt)" -le 4 ] || { echo "FAIL: more than a line per stage"; cat stages.txt; fail=1; }
 # Messages name the flag, never the library's options field.
 "$ecorail" "${run[@]}" --early -1 --json x.json 2> err.txt
 grep -q "MonteCarloOptions\|early_s" err.txt && { echo "FAIL: internal name"; cat err.txt; fail=1; }

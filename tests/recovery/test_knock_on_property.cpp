@@ -79,7 +79,8 @@ TEST(KnockOnProperty, FollowersKeepTheirBrakingDistanceAndNeverPass) {
     if (r.summary.followers_affected == 0) {
       DelayRecoveryOptions alone = o;
       alone.check_followers = false;
-      const DelayRecoveryResult s = recover_delay(small_library(), plan, 0, j, d, alone, test_store());
+      const DelayRecoveryResult s =
+          recover_delay(small_library(), plan, 0, j, d, alone, test_store());
       ASSERT_EQ(s.sections.size(), r.sections.size());
       for (std::size_t k = 0; k < s.sections.size(); ++k) {
         EXPECT_EQ(s.sections[k].new_time_s, r.sections[k].new_time_s);
