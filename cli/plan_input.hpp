@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cli/problem_options.hpp"
-#include "cli/progress.hpp"
+#include "cli/progress_line.hpp"
 #include "data/line.hpp"
 #include "dp/section_library.hpp"
 #include "recovery/plan.hpp"

@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "dp/progress.hpp"
+#include "dp/progress_callback.hpp"
 #include "dp/section_library.hpp"
 #include "dp/termination.hpp"
 #include "physics/trip.hpp"
