@@ -60,7 +60,7 @@ PyEnvelopeFit fit_envelope_py(const py::object& points_path, const std::string& 
                                : form_name == "power"   ? EnvelopeForm::ConstantPower
                                                         : result.better;
   const FormFit& fit = result.form(written);
-  if (!fit.converged) {
+  if (!fit.converged()) {
     throw std::runtime_error(std::string(fitting::form_name(written)) + " fit did not converge");
   }
   PyEnvelopeFit out;

@@ -101,6 +101,11 @@ energy::EnergyModelOptions model_options(const FleetArgs& a) {
     bad_argument("power_supply", "model='network' (the other models have no supply network)",
                  "a file");
   }
+  // An argument the chosen model does not read is refused, never ignored (as the program's flags).
+  if (!a.sections_at_m.empty() && a.model != "sections") {
+    bad_argument("sections_at_m", "model='sections' (the other models have no supply sections)",
+                 "model='" + a.model + "'");
+  }
   if (a.model == "sections" && o.section_boundaries_m.empty()) {
     bad_argument("sections_at_m", "at least one supply-section boundary (m) for model='sections'",
                  "none");
@@ -286,6 +291,7 @@ PyFleet optimise_py(FleetState& state, const FleetArgs& a, std::uint64_t seed, d
   o.progress = [&check](const fleet::OptimiserProgress& p) { check(p.stage.c_str(), 0, 0); };
   PyFleet out;
   std::string message;
+  bool usable = false;  // the optimiser's own test: a budget-stopped search is a result
   guard.run([&] {
     std::lock_guard<std::mutex> lock(state.mutex);
     const fleet::TimetableStudy& s = study_for(state, problem);
@@ -298,10 +304,11 @@ PyFleet optimise_py(FleetState& state, const FleetArgs& a, std::uint64_t seed, d
     const auto& sm = r.result.summary;
     out.summary = {sm.termination, sm.BriefReport(), sm.FullReport(), {}};
     message = sm.message;
-    if (sm.IsSolutionUsable()) add_trace(out, s, r.result.evaluation.departures_s);
+    usable = sm.IsSolutionUsable();
+    if (usable) add_trace(out, s, r.result.evaluation.departures_s);
     return 0;
   });
-  if (!out.summary.is_solution_usable()) {
+  if (!usable) {
     raise_solve_error("the optimiser failed: " + message, py::cast(out));
   }
   return out;
