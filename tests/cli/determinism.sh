@@ -2,9 +2,9 @@
 # Determinism: the same inputs give the same bytes with 1 and 2 threads, and two
 # runs at the same time give the same bytes as one alone, for sections, journeys, frontiers and
 # the fleet commands (timetable evaluate and optimise, also on the DC network model) and a
-# delay recovery. Only the wall times and the thread
-# count differ in a JSON report (keys with "wall" or "threads", and the wall time that ends a
-# brief report); they are removed before comparing, nothing else is.
+# delay recovery. Only the wall times and the thread count differ in a JSON report (keys with
+# "wall" or "threads", and a brief report's wall time); they are removed before comparing,
+# nothing else is.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 
@@ -17,8 +17,10 @@ def clean(x):
         return {k: clean(v) for k, v in x.items() if not re.search(r"wall|threads", k)}
     if isinstance(x, list):
         return [clean(v) for v in x]
-    if isinstance(x, str):  # a brief report ends with its wall time: "..., 48.41 s"
-        return re.sub(r"[0-9.]+ s( wall)?(?=(, [A-Z_]+)?$)", "", x)
+    # A brief report's wall time ends it ("..., 48.41 s") or its figures, before the reason a
+    # search stopped ("..., 1.24 s; the search ended ...").
+    if isinstance(x, str):
+        return re.sub(r"[0-9.]+ s( wall)?(?=(, [A-Z_]+)?(;|$))", "", x)
     return x
 print(json.dumps(clean(json.load(open(sys.argv[1]))), sort_keys=True))
 PY

@@ -32,7 +32,7 @@ rm -f negA.toml zero.toml mass.toml gravity.toml
 # Times that are not finite, or beyond what the engine solves; frontiers of endless points.
 expect_error "--time" "${run[@]/110/inf}"
 expect_error "--time" "${run[@]/110/1e9}"
-expect_error "t_max_s" frontier --from A6 --to A7 --tmax nan --json f.json
+expect_error "field '--tmax'" frontier --from A6 --to A7 --tmax nan --json f.json
 expect_error "10000 points" frontier --from A6 --to A7 --step 1e-9 --json f.json
 expect_error "10000 points" frontier --from A6 --to A7 --tmax 1e9 --json f.json
 
