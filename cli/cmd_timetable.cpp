@@ -52,6 +52,7 @@ struct TimetableArgs {
   double anneal_step_s = 1.0;
   std::string optimise = "headways";
   bool per_train_patterns = false;
+  bool window_bound = false;    // --window-bound (timetable/window_bound.hpp)
   bool optimise_given = false;  // --optimise on the command line (not its default)
   std::string json, csv, xlsx, diagram, power_plot;
   std::string window = "0:7200";
@@ -463,6 +464,7 @@ void run_optimise(const TimetableArgs& given) {
   o.moves_per_run = a.moves;
   o.anneal_step_s = a.anneal_step_s;
   o.threads = a.problem.threads;
+  o.window_bound = a.window_bound;  // hook: timetable/window_bound.hpp
   std::string why;
   if (!o.IsValid(&why)) bad("--restarts/--moves/--time-limit/--threads", why);
   if (!a.quiet && isatty(STDERR_FILENO)) {
@@ -585,6 +587,9 @@ void add_timetable_command(CLI::App& app) {
   op->add_option("--optimise", opt_args.optimise,
                  "headways (pattern fixed) or pattern (dwells and running times too)")
       ->capture_default_str();
+  op->add_flag("--window-bound", opt_args.window_bound,
+               "also certify with the window bound (power-flow, one headway class; about a "
+               "minute of CPU on the reference case)");
   op->add_flag("--per-train-patterns", opt_args.per_train_patterns,
                "each train its own dwells and running times (implies --optimise pattern; "
                "power-flow and sections models)");

@@ -13,6 +13,8 @@
 #include "timetable/headway_dp.hpp"
 #include "timetable/network_optimiser.hpp"
 #include "timetable/pair_bound.hpp"
+#include "timetable/search_starts.hpp"
+#include "timetable/window_bound.hpp"
 #include "timetable/windowed_dp.hpp"
 
 namespace ecorail::timetable {
@@ -305,6 +307,17 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
     starts.push_back(departures_from_headways(maximise_separable(dom, pair).headways_s));
   }
   starts.push_back(departures_from_headways(uniform_headways(p)));
+  // Hook: the window bound (window_bound.hpp), when asked for; the maximiser of its relaxed
+  // problem, moved onto the span, is one more start (search_starts.hpp).
+  WindowBound window;
+  if (options.window_bound && eo.model == EnergyModel::PowerFlow && !p.windowed()) {
+    report("window bound", 0.0, NAN);
+    WindowBoundOptions wo;
+    wo.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    window = window_used_regen_bound(fine, p, wo);
+    if (window.applicable)
+      starts.push_back(departures_from_headways(repair_to_span(window.best_maximiser, p)));
+  }
   MicroJoules start_best = 0;
   {
     auto balance = models.make_balance();
@@ -380,6 +393,11 @@ HeadwayOptimiserResult optimise_headways(const FleetModels& models,
   // No timetable uses more than is regenerated, nor more than is drawn.
   s.bound_used_regen_J =
       std::min({bound.bound_used_J, out.evaluation.total.regen_J, out.evaluation.total.traction_J});
+  // Hook: the window bound computed before the annealing (window_bound.hpp).
+  if (window.applicable && window.bound_used_J < s.bound_used_regen_J) {
+    s.bound_used_regen_J = window.bound_used_J;
+    s.method += ", window bound";
+  }
   s.gap_fraction = (s.bound_used_regen_J - s.used_regen_J) / s.substation_J;
   s.pair_sum_J = pair_sum_J(fine, best);
   s.termination = s.time_limit_reached ? Termination::NO_CONVERGENCE : Termination::CONVERGENCE;

@@ -49,6 +49,10 @@ struct HeadwayOptimiserOptions {
   double anneal_step_s = 1.0;
   double time_limit_s = 0.0;  // 0: none; when reached the result is NO_CONVERGENCE
   int threads = 0;            // 0: OpenMP's default
+  // Also certify with the window bound (window_bound.hpp; power-flow, one class): valid over
+  // every timetable and much tighter than the pair bound, but it costs about a minute of CPU
+  // on question 2.1's reference case, so it is asked for.
+  bool window_bound = false;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
