@@ -50,8 +50,9 @@ int divisor_at_most(int tps, int want) {
 
 // Pair tables on the 1 s grid: Q(g, s) what a train at offset >= s exchanges with one g seconds
 // behind it (both directions), S(s) a train's own bins from s, P(g) = Q(g, g) the whole
-// exchange of two trains g apart, E(s) = sum from s of max(R, T): the most a train can add to
-// the used energy of any bin (min(x + a, y + b) - min(x, y) <= max(a, b)).
+// exchange of two trains g apart (min is superadditive, so these bound their fine-grid sums),
+// E(s) = sum from s of max(R, T) on the fine grid: the most a train can add to the used energy
+// of its bins (min(x + a, y + b) - min(x, y) <= max(a, b)).
 struct PairTables {
   int L = 0;              // active seconds: no power at offsets >= L
   std::vector<double> q;  // (L + 1) x (L + 2)
@@ -66,7 +67,7 @@ struct PairTables {
   double E(long s) const { return s > L ? 0.0 : tail[std::max(0L, s)]; }
 };
 
-PairTables pair_tables(const Grid& g1, int active_s) {
+PairTables pair_tables(const Grid& g1, const Grid& gf, int active_s) {
   PairTables pt;
   pt.L = active_s;
   const int L = active_s;
@@ -81,11 +82,13 @@ PairTables pair_tables(const Grid& g1, int active_s) {
     }
   }
   pt.self.assign(L + 2, 0.0);
-  pt.tail.assign(L + 2, 0.0);
-  for (int tau = L; tau >= 0; --tau) {
+  for (int tau = L; tau >= 0; --tau)
     pt.self[tau] = pt.self[tau + 1] + std::min(g1.r(tau), g1.t(tau));
-    pt.tail[tau] = pt.tail[tau + 1] + std::max(g1.r(tau), g1.t(tau));
-  }
+  // max is subadditive, so E is summed on the fine grid (a coarse bin's max could be smaller).
+  pt.tail.assign(L + 2, 0.0);
+  for (long tau = static_cast<long>(L) * gf.q - 1; tau >= 0; --tau)
+    pt.tail[tau / gf.q] += std::max(gf.r(tau), gf.t(tau));
+  for (int sec = L - 1; sec >= 0; --sec) pt.tail[sec] += pt.tail[sec + 1];
   return pt;
 }
 
@@ -148,7 +151,7 @@ Tables build_tables(const PowerProfile& profile, const FleetProblem& p, const Wi
   // Every feasible timetable's headways miss n hmax by exactly this many seconds, so no run of
   // consecutive headways misses its maximum by more.
   const long deficit = static_cast<long>(p.trains - 1) * hmax - p.span_s;
-  const PairTables pt = pair_tables(g1, L);
+  const PairTables pt = pair_tables(g1, gf, L);
   tb.W.assign(static_cast<std::size_t>(D) * D * D, kNone);
   tb.S.assign(static_cast<std::size_t>(D) * D, kNone);
   tb.E.assign(static_cast<std::size_t>(D) * D, kNone);
