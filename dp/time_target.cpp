@@ -259,7 +259,7 @@ TimeSearchResult solve_for_time(const SectionEngine& engine, double target,
   // of braking holds), so where those decisions flip its running time can differ from the fine
   // run's by seconds, and a time in such a place can be out of the coarse search's reach (A5 ->
   // A6 in 152 s: a 6 s jump of the coarse running time where the fine one is smooth). Then the
-  // search runs again on fine runs only, as before issue 10.
+  // search runs again on fine runs only.
   TimeSearchOptions fine = options;
   fine.search_step_m = 0.0;
   TimeSearchResult out = search_for_time(engine, target, fine, start, nullptr);

@@ -94,7 +94,7 @@ inline constexpr int kSlowScanRefinements = 6;
 SlowLimit find_slow_limit(const SectionEngine& engine, const StartState& start = {});
 
 // Where the trim cannot close lambda_tolerance_s (or only at a price far above lambda), the
-// search narrows on to this before trimming again (the default tolerance before issue 10).
+// search narrows on to this before trimming again (the price tolerance of an all-fine search).
 inline constexpr double kFallbackLambdaTolerance_s = 0.05;
 
 struct TimeSearchOptions {
@@ -111,8 +111,8 @@ struct TimeSearchOptions {
   // the best is then re-run at the engine's fine step (from its kept value function, no second
   // sweep), which alone is trimmed and returned. RK4 at 0.5 m puts a run's time within about a
   // millisecond of the fine run's, far inside lambda_tolerance_s, at a tenth of its cost. 0, or
-  // at most the engine's resim_step_m: every run is fine (the search before issue 10; the
-  // energies it gives differ by under 0.005 %, docs/performance.md).
+  // at most the engine's resim_step_m: every run is fine (an all-fine search; the energies
+  // it gives differ by under 0.005 %, docs/performance.md).
   double search_step_m = 0.5;
   // Called after each lambda evaluation ("lambda evaluation", count, 0); may be empty.
   ProgressFn progress;
