@@ -50,9 +50,9 @@ recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
 void add_plan_source_options(CLI::App* cmd, std::string& plan_file, bool& reference);
 void add_plan_engine_options(CLI::App* cmd, ProblemOptions& problem, double& frontier_span_s,
                              std::string& cache_dir, bool& no_cache);
-// Progress of the delay commands: the progress line on a terminal (cli/progress_line.hpp) and, off a
-// terminal, one line per stage on stderr ("ecorail delay: followers"), so that a log shows
-// where a long run is; nothing with --quiet.
+// Progress of the delay commands: the progress line on a terminal (cli/progress_line.hpp) and, off
+// a terminal, one line per stage on stderr ("ecorail delay: followers"), so that a log shows where
+// a long run is; nothing with --quiet.
 class StageProgress {
  public:
   StageProgress(std::string label, bool quiet);

@@ -37,13 +37,13 @@ const FormulationSummary& Summary::primary() const {
 const FormulationSummary& Summary::converged_primary() const {
   const FormulationSummary& r = primary();
   if (!r.fit.converged()) {
-    throw NotConvergedError(
-        std::string(method_name(r.method)) + " fit ended " +
-        std::string(dp::termination_name(r.fit.termination)) + " in pass " +
-        std::to_string(r.fit.passes) + " of " + std::to_string(r.fit.passes) + " after " +
-        std::to_string(r.fit.last_pass_iterations) + " of at most " +
-        std::to_string(r.fit.max_iterations_per_pass) + " iterations (" +
-        std::to_string(r.fit.iterations) + " over all passes): no calibrated train written");
+    throw NotConvergedError(std::string(method_name(r.method)) + " fit ended " +
+                            std::string(dp::termination_name(r.fit.termination)) + " in pass " +
+                            std::to_string(r.fit.passes) + " of " + std::to_string(r.fit.passes) +
+                            " after " + std::to_string(r.fit.last_pass_iterations) +
+                            " of at most " + std::to_string(r.fit.max_iterations_per_pass) +
+                            " iterations (" + std::to_string(r.fit.iterations) +
+                            " over all passes): no calibrated train written");
   }
   return r;
 }

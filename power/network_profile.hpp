@@ -1,6 +1,6 @@
 // NetworkProfile: one train's trip on the network model's time grid. Where the power-flow
-// profile (energy/power_flow_profile.hpp) needs only the energy in each bin, the network model also needs
-// where the train is: per bin from the departure to the arrival, the position at the bin's
+// profile (energy/power_flow_profile.hpp) needs only the energy in each bin, the network model also
+// needs where the train is: per bin from the departure to the arrival, the position at the bin's
 // middle, the mean traction power at the wheel and the mean regenerated power (the trip's exact
 // power bins divided by the step), and the fraction of the bin the train is on the line (1 but
 // for the last bin), which scales its auxiliary power. Departures are whole seconds and the

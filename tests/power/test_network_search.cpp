@@ -1,8 +1,8 @@
-// The network model's searches and bound (energy/network_bound.hpp, the headway search with the network model,
-// pattern_search.hpp) on the small fleet (the reference train on A6 -> A9): the bound never
-// exceeds the best timetable found by enumerating every timetable of 3- and 4-train fleets
-// (diode supplies with and without auxiliaries, a reversible one, a high-resistance one); with
-// zero resistance and no auxiliaries it is the power-flow pair bound's; the optimiser keeps
+// The network model's searches and bound (energy/network_bound.hpp, the headway search with the
+// network model, pattern_search.hpp) on the small fleet (the reference train on A6 -> A9): the
+// bound never exceeds the best timetable found by enumerating every timetable of 3- and 4-train
+// fleets (diode supplies with and without auxiliaries, a reversible one, a high-resistance one);
+// with zero resistance and no auxiliaries it is the power-flow pair bound's; the optimiser keeps
 // peak-hour headway classes, its result evaluates to the same energy and is above the bound;
 // the pattern search under the network model is never worse than the headways alone and keeps
 // the trip time and the dwell range.
