@@ -51,15 +51,6 @@ double section_distance_margin_m(const physics::Trip& leader, const physics::Sim
   return least;
 }
 
-physics::Trip trip_of(const dp::SectionLibrary& library,
-                      const std::vector<physics::SimulationResult>& runs,
-                      const std::vector<double>& dwell_after_s, double departure_s) {
-  std::vector<physics::TripSection> sections;
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    sections.push_back({&library.route(i), &runs[i], dwell_after_s[i]});
-  return physics::Trip(sections, departure_s, library.train().regen_efficiency);
-}
-
 bool arrives(const physics::SimulationResult& sim) {
   return dp::run_arrives(sim) && !sim.stopped_early;
 }
@@ -225,6 +216,15 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
     throw std::logic_error(buf);
   }
   return out;
+}
+
+physics::Trip trip_of(const dp::SectionLibrary& library,
+                      const std::vector<physics::SimulationResult>& runs,
+                      const std::vector<double>& dwell_after_s, double departure_s) {
+  std::vector<physics::TripSection> sections;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    sections.push_back({&library.route(i), &runs[i], dwell_after_s[i]});
+  return physics::Trip(sections, departure_s, library.train().regen_efficiency);
 }
 
 }  // namespace ecorail::service

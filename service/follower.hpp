@@ -50,4 +50,10 @@ inline constexpr double kDistanceMarginTolerance_m = 0.01;
 // distance (within kDistanceMarginTolerance_m), never a negative gap.
 bool keeps_separation(const SeparationScan& scan);
 
+// A train's trip from its section runs on the library's routes, dwell_after_s[i] after run i,
+// leaving at departure_s.
+physics::Trip trip_of(const dp::SectionLibrary& library,
+                      const std::vector<physics::SimulationResult>& runs,
+                      const std::vector<double>& dwell_after_s, double departure_s);
+
 }  // namespace ecorail::service

@@ -9,18 +9,7 @@
 
 namespace ecorail::service {
 
-namespace {
-
-physics::Trip trip_of(const dp::SectionLibrary& library,
-                      const std::vector<physics::SimulationResult>& runs,
-                      const std::vector<double>& dwell_after_s, double departure_s) {
-  std::vector<physics::TripSection> sections;
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    sections.push_back({&library.route(i), &runs[i], dwell_after_s[i]});
-  return physics::Trip(sections, departure_s, library.train().regen_efficiency);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 physics::SimulationResult drive_planned(const dp::SectionEngine& engine,
                                         const physics::ControlProgram& program,
