@@ -1,34 +1,37 @@
 // A proven upper bound on the regenerated energy any timetable of a one-class problem can use in
-// the power-flow model (one supply section), tight enough to certify the best timetables of
-// question 2.1. It rests on three facts.
-//  1. A coarser grid never uses less: a bin of the bound's grid (0.1 s by default) is a union
+// the power-flow model (one supply section): the power-flow model's certificate when it applies
+// (energy/power_flow_model.hpp). It rests on four facts.
+//  1. A coarser grid never uses less: a bin of the bound's grid (0.5 s by default) is a union
 //     of the model's bins, and sum_b min(R_b, T_b) <= min(sum_b R_b, sum_b T_b), so the used
 //     energy on the bound's grid is at least the model's (departures are whole seconds, so the
-//     grids stay aligned).
+//     grids stay aligned). Coarsening only loosens the bound; it makes its tables cheaper.
 //  2. Windows: between the departures of trains j and j+1 (window j, length h_j) order the
 //     trains on the line newest first. The used energy of a bin is the min of the newest three
 //     (trains j-2, j-1, j: a function G3 of h_{j-2}, h_{j-1}, h_j), plus the exact increment of
 //     the fourth newest (train k = j-3, whose position relative to trains k+1..k+3 is fixed by
-//     h_k, h_{k+1}, h_{k+2}: a function X4 of those three), plus for every older train a pair
-//     form that is never below its increment (min(x + a, y + b) - min(x, y) <= sum over the
-//     newer trains i of min(a, T_i) + min(b, R_i), plus min(a, b)). When every four consecutive
-//     headways sum to at least the time a train draws or feeds power (L, about the trip time),
-//     no train is older than fourth, and used = sum_j G3 + sum_k X4 exactly: a sum of
-//     functions of three consecutive headways. With every headway at least L/4 that holds by
-//     itself; a timetable with a shorter headway (below the "core") may have older trains,
-//     whose pair terms are charged to a triple that holds the short headway (the triple of
-//     train k itself when one of h_k..h_{k+2} is short, else the next triple, whose newest
-//     headway h_{k+3} is the short one), each by its largest value over the headways the triple
-//     does not see. So the bound is valid over EVERY timetable; it is exact (up to the grid of
-//     fact 1) on the timetables whose headways all lie in the core.
-//  3. A DP over the last two headways maximises the sum of those functions with the fixed sum
-//     of headways priced by a Lagrange multiplier mu: every mu gives a valid bound (weak
-//     duality); mu is found by bisection on the sign of the sum's excess. Headways below the
-//     core are grouped into cells whose value is the largest over the cell's members (on a 1 s
-//     grid, with the cheaper pair form for the fourth train as well): still a bound, and short
-//     headways cost much of the fixed sum, so the dual rarely picks them.
-// The DP's maximisers (a headway sequence for each multiplier tried) are good starts for a
-// search: window_bound_maximisers() returns them.
+//     h_k, h_{k+1}, h_{k+2}: a function X4 of those three), plus for every older train at most
+//     max(R, T) of that train in the bin (min(x + a, y + b) - min(x, y) <= max(a, b)). A train
+//     draws or feeds power for L seconds after its departure (about the trip time); when every
+//     four consecutive headways sum to at least L no train is ever fifth newest, and used =
+//     sum_j G3 + sum_k X4 exactly: a sum of functions of three consecutive headways. Every
+//     headway of at least L/4 (the "core") guarantees it.
+//  3. The rest of the domain: train k can be fifth newest only when h_k..h_{k+3} sum below L.
+//     Its part from t_{k+4} on (the sum of max(R, T) over the rest of its run) is charged at the
+//     DP step that adds h_{k+3}, which knows h_{k+1..k+3} and whether h_k lies in the core (a
+//     class bit in the DP state), at its largest value for that class. Triples with a headway
+//     below the core are valued on a 1 s grid with the fourth train by pairs (min(a, T_N3) <=
+//     sum_i min(a, T_i)), headways below the core grouped in cells at their largest value, and
+//     a triple whose shortfall below 3 headway_max_s exceeds the whole span's is left out (no
+//     feasible timetable holds it). So the bound holds over EVERY timetable within the limits,
+//     with no assumption; it is exact (up to fact 1's grid and fact 4's multiplier) on the
+//     timetables whose headways all lie in the core.
+//  4. A DP over the last two headways (and the class bit) maximises the sum of those terms with
+//     the fixed sum of headways priced by a Lagrange multiplier mu: every mu gives a valid bound
+//     (weak duality). The dual is convex and piecewise linear in mu with the maximiser's excess
+//     over the span as subgradient: mu is bracketed, then set where the bracket's tangents
+//     cross, until the best bound is within multiplier_tolerance of that crossing (no mu can
+//     give less).
+// The DP's maximisers (a headway sequence for each multiplier tried) are starts for a search.
 #pragma once
 
 #include <limits>
@@ -41,9 +44,9 @@
 namespace ecorail::energy {
 
 struct WindowBoundOptions {
-  int bound_ticks_per_second = 10;  // grid of the core's exact windows (divides the profile's)
-  int short_cell_s = 20;            // width of the cells below the core
-  int max_dual_evaluations = 24;    // DP runs of the multiplier search
+  int bound_ticks_per_second = 2;  // grid of the core's exact windows (divides the profile's)
+  int short_cell_s = 20;           // width of the cells below the core
+  int max_dual_evaluations = 24;   // DP runs of the multiplier search
   // The multiplier search stops when no multiplier can lower the bound by more than this
   // fraction of it (the crossing of the bracket's tangents shows how much one could).
   double multiplier_tolerance = 1e-5;
