@@ -45,7 +45,7 @@ namespace ecorail::energy {
 
 struct WindowBoundOptions {
   int bound_ticks_per_second = 2;  // grid of the core's exact windows (divides the profile's)
-  int short_cell_s = 20;           // width of the cells below the core
+  int short_cell_s = 10;           // width of the cells below the core (s)
   int max_dual_evaluations = 24;   // DP runs of the multiplier search
   // The multiplier search stops when no multiplier can lower the bound by more than this
   // fraction of it (the crossing of the bracket's tangents shows how much one could).
