@@ -104,7 +104,8 @@ TEST(WindowBound, EveryTimetableBelowItsRelaxedValueAndTheBoundAboveTheOptimum) 
 }
 
 // The multiplier search ends within its tolerance of the dual's minimum (the crossing of the
-// tangents of its bracket), and no multiplier tried gives a lower bound than the one reported.
+// tangents of its bracket), no multiplier tried gives a lower bound than that minimum, and the
+// bound does not depend on the thread count.
 TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
   const FleetProblem p = testing::small_fleet(8, 90, 160, 7 * 128);
   const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
@@ -116,6 +117,12 @@ TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
   EXPECT_LE(bound.dual_floor_J, bound.bound_used_J);
   EXPECT_LE(bound.bound_used_J - bound.dual_floor_J,
             wo.multiplier_tolerance * bound.bound_used_J + 1e-9 * bound.bound_used_J + 1e-3);
+  // The same bound, bit for bit, on one thread and on two.
+  WindowBoundOptions one_thread = wo, two_threads = wo;
+  one_thread.threads = 1;
+  two_threads.threads = 2;
+  EXPECT_EQ(window_used_regen_bound(fleet.profile(), limits_of(p), one_thread).bound_used_J,
+            window_used_regen_bound(fleet.profile(), limits_of(p), two_threads).bound_used_J);
   // Any other multiplier: a valid bound too, never a lower one.
   for (int i = 1; i <= 3; ++i) {
     WindowBoundOptions one = wo;
