@@ -56,6 +56,9 @@ struct FleetLimits {
   int span_s = 63900;
   int headway_min_s = 120;
   int headway_max_s = 660;
+  // Headway classes the range relaxes: 1, or 2 when it covers a peak and an off-peak range
+  // (a bound that gains nothing on the relaxation may then leave itself out).
+  int headway_classes = 1;
   // Why the departures break the limits ("" when they keep them).
   std::string departures_problem(const std::vector<int>& departures_s) const;
 };

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "energy/pair_bound.hpp"
+#include "energy/window_bound.hpp"
 
 namespace ecorail::energy {
 
@@ -147,6 +148,12 @@ FleetLowerBound PowerFlowModel::lower_bound() const {
   b.name = "pair bound";
   b.used_regen_J = std::min({pair.bound_used_J, to_joules(trains * profile_->regen_total()),
                              to_joules(trains * profile_->traction_total())});
+  // One supply section and one headway class: the window bound, far tighter where it applies.
+  const WindowBound window = window_used_regen_bound(*profile_, limits());
+  if (window.applicable && window.bound_used_J < b.used_regen_J) {
+    b.used_regen_J = window.bound_used_J;
+    b.name = "window bound";
+  }
   return b;
 }
 

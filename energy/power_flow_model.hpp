@@ -5,7 +5,8 @@
 // EnergyModelOptions::section_boundaries_m). Both lay the trip's power profile
 // (energy/power_flow_profile.hpp) on the options' time grid; a move re-adds one train's bins, so
 // the balance is cheap and the heuristic search polishes every annealed run. Its lower bound is
-// the pair bound (energy/pair_bound.hpp), capped by the regenerated and the traction energy.
+// the least of the window bound (energy/window_bound.hpp: one supply section and one headway
+// class), the pair bound (energy/pair_bound.hpp), and the regenerated and the traction energy.
 #pragma once
 
 #include <memory>

@@ -50,7 +50,7 @@ int FleetProblem::any_headway_max_s() const {
 }
 
 energy::FleetLimits limits_of(const FleetProblem& p) {
-  return {p.trains, p.span_s, p.any_headway_min_s(), p.any_headway_max_s()};
+  return {p.trains, p.span_s, p.any_headway_min_s(), p.any_headway_max_s(), p.windowed() ? 2 : 1};
 }
 
 std::vector<int> departures_from_headways(const std::vector<int>& headways_s) {

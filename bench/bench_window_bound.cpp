@@ -1,0 +1,76 @@
+// Cost and value of the window bound (energy/window_bound.hpp) on question 2.1's reference case
+// (100 trains, span 63900 s, headways 120-660 s, the reference pattern at the model's default
+// 0.01 s step): the whole bound (tables and multiplier search) on the bound grid the argument
+// names (bins per second), with the bound on the used regenerated energy, the DP runs, the
+// dual's floor and the time of the tables as counters; and the bound restricted to the core. The
+// pattern and the model are built outside the timings. Run: build/bench/bench_window_bound   (or
+// under valgrind --tool=callgrind with
+// --benchmark_filter=.../1 for instruction counts)
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <vector>
+
+#include "data/line_loader.hpp"
+#include "data/route_builder.hpp"
+#include "data/train_io.hpp"
+#include "energy/power_flow_model.hpp"
+#include "energy/window_bound.hpp"
+#include "fleet/fleet_pattern.hpp"
+#include "fleet/fleet_problem.hpp"
+
+namespace {
+
+using namespace ecorail;
+
+const energy::PowerFlowModel& reference_model() {
+  static const std::unique_ptr<energy::PowerFlowModel> m = [] {
+    const auto line = data::default_line();
+    const auto train = data::default_train();
+    const auto stops = data::stops_between(line, "A1", "A14");
+    const dp::SectionLibrary lib(train, data::build_routes(line, stops, train), {});
+    dp::JourneyOptions o;
+    o.measure_marginals = false;
+    const fleet::PatternTrip p =
+        fleet::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
+    return std::make_unique<energy::PowerFlowModel>(p.trip, fleet::limits_of({}),
+                                                    energy::EnergyModelOptions{});
+  }();
+  return *m;
+}
+
+void BM_WindowBound(benchmark::State& state) {
+  const energy::PowerFlowModel& m = reference_model();
+  energy::WindowBoundOptions o;
+  o.bound_ticks_per_second = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const energy::WindowBound b = energy::window_used_regen_bound(m.profile(), m.limits(), o);
+    state.counters["bound_used_kJ"] = b.bound_used_J / 1e3;
+    state.counters["dp_runs"] = b.evaluations;
+    state.counters["tables_s"] = b.tables_s;
+    state.counters["dual_floor_kJ"] = b.dual_floor_J / 1e3;
+  }
+}
+BENCHMARK(BM_WindowBound)->Arg(1)->Arg(2)->Arg(10)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The same bound with every headway in the core (522-660 s, where at most four trains share the
+// line): a bound for those timetables only, not a certificate for the reference problem; what
+// is left of its gap is the grid's and the multiplier's.
+void BM_WindowBoundCoreOnly(benchmark::State& state) {
+  const energy::PowerFlowModel& m = reference_model();
+  energy::FleetLimits core = m.limits();
+  core.headway_min_s = 522;
+  energy::WindowBoundOptions o;
+  o.bound_ticks_per_second = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const energy::WindowBound b = energy::window_used_regen_bound(m.profile(), core, o);
+    state.counters["bound_used_kJ"] = b.bound_used_J / 1e3;
+    state.counters["dp_runs"] = b.evaluations;
+    state.counters["core_min_s"] = b.core_min_s;
+  }
+}
+BENCHMARK(BM_WindowBoundCoreOnly)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,181 @@
+// The window bound (energy/window_bound.hpp) on fleets small enough to enumerate every
+// timetable (3 to 6 trains of the small pattern, trip 480 s, so the core starts at 120 s): the
+// relaxed value of every timetable is at least its used energy (each window term bounds its
+// share), equal to it on the bound's grid when every headway lies in the core (the
+// decomposition is exact there), and the bound is never below the brute-force optimum, on the
+// model's grid and on a coarser one. The power-flow model certifies with it, and the headway
+// optimiser's gap then covers its true shortfall.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+
+#include "../fleet/fleet_fixture.hpp"
+#include "energy/window_bound.hpp"
+
+namespace ecorail::fleet {
+namespace {
+
+using energy::window_relaxed_values_J;
+using energy::window_used_regen_bound;
+using energy::WindowBound;
+using energy::WindowBoundOptions;
+
+// Every headway sequence of the problem (sum = span, each in range).
+void for_each_timetable(const FleetProblem& p,
+                        const std::function<void(const std::vector<int>&)>& f) {
+  std::vector<int> h(p.trains - 1);
+  std::function<void(int, int)> rec = [&](int k, int left) {
+    if (k == static_cast<int>(h.size()) - 1) {
+      if (left < p.headway_min_s || left > p.headway_max_s) return;
+      h[k] = left;
+      f(h);
+      return;
+    }
+    for (int x = p.headway_min_s; x <= p.headway_max_s; ++x) {
+      h[k] = x;
+      rec(k + 1, left - x);
+    }
+  };
+  rec(0, p.span_s);
+}
+
+struct Case {
+  int trains, hmin, hmax, span;
+};
+
+EnergyModelOptions tenth_of_a_second() {
+  EnergyModelOptions o;
+  o.time_step_s = 0.1;
+  return o;
+}
+
+// Headways 80-140 cover the core (from 120 s) and cells below it; the spans are chosen so that
+// some timetables are all-core and some are not.
+TEST(WindowBound, EveryTimetableBelowItsRelaxedValueAndTheBoundAboveTheOptimum) {
+  for (const Case c : {Case{3, 80, 200, 280}, Case{4, 80, 140, 380}, Case{5, 90, 140, 500},
+                       Case{6, 110, 130, 620}}) {
+    const FleetProblem p = testing::small_fleet(c.trains, c.hmin, c.hmax, c.span);
+    const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+    WindowBoundOptions wo;
+    wo.short_cell_s = 7;
+    wo.bound_ticks_per_second = 10;  // the model's grid: exact on the core
+    const WindowBound bound = window_used_regen_bound(fleet.profile(), limits_of(p), wo);
+    ASSERT_TRUE(bound.applicable) << bound.why_not;
+    auto balance = fleet.make_balance();
+    double best = 0.0;
+    int timetables = 0, core = 0;
+    std::vector<std::vector<int>> sample;
+    std::vector<double> used_of_sample;
+    for_each_timetable(p, [&](const std::vector<int>& h) {
+      balance->place_all(departures_from_headways(h));
+      const double used = to_joules(balance->used());
+      best = std::max(best, used);
+      ++timetables;
+      // Every all-core timetable and every third of the rest.
+      if (*std::min_element(h.begin(), h.end()) < bound.core_min_s && timetables % 3 != 0) return;
+      sample.push_back(h);
+      used_of_sample.push_back(used);
+    });
+    const std::vector<double> relaxed =
+        window_relaxed_values_J(fleet.profile(), limits_of(p), sample, wo);
+    for (std::size_t i = 0; i < sample.size(); ++i) {
+      const double used = used_of_sample[i];
+      EXPECT_GE(relaxed[i], used * (1 - 1e-12)) << c.trains << " trains, timetable " << i;
+      if (*std::min_element(sample[i].begin(), sample[i].end()) >= bound.core_min_s) {
+        ++core;
+        // Exact up to the tables' rounding up to floats (a few parts in 1e8 of each term).
+        EXPECT_NEAR(relaxed[i], used, 1e-6 * used + 1e-3) << "core timetable: exact decomposition";
+      }
+    }
+    EXPECT_GT(timetables, 10);
+    EXPECT_GT(core, 0) << c.trains << " trains: no all-core timetable sampled";
+    EXPECT_GT(best, 0.0);
+    EXPECT_GE(bound.bound_used_J, best * (1 - 1e-12)) << c.trains << " trains";
+    // A coarser grid of the bound (1 s bins, each a union of ten of the model's) only loosens.
+    wo.bound_ticks_per_second = 1;
+    const WindowBound coarse = window_used_regen_bound(fleet.profile(), limits_of(p), wo);
+    EXPECT_GE(coarse.bound_used_J, best * (1 - 1e-12)) << c.trains << " trains, 1 s grid";
+    const std::vector<double> relaxed_coarse =
+        window_relaxed_values_J(fleet.profile(), limits_of(p), sample, wo);
+    for (std::size_t i = 0; i < sample.size(); ++i)
+      EXPECT_GE(relaxed_coarse[i], used_of_sample[i] * (1 - 1e-12)) << "1 s grid, " << i;
+  }
+}
+
+// The multiplier search ends within its tolerance of the dual's minimum (the crossing of the
+// tangents of its bracket), no multiplier tried gives a lower bound than that minimum, and the
+// bound does not depend on the thread count.
+TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
+  const FleetProblem p = testing::small_fleet(8, 90, 160, 7 * 128);
+  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  WindowBoundOptions wo;
+  wo.max_dual_evaluations = 60;
+  const WindowBound bound = window_used_regen_bound(fleet.profile(), limits_of(p), wo);
+  ASSERT_TRUE(bound.applicable) << bound.why_not;
+  EXPECT_LT(bound.evaluations, wo.max_dual_evaluations);
+  EXPECT_LE(bound.dual_floor_J, bound.bound_used_J);
+  EXPECT_LE(bound.bound_used_J - bound.dual_floor_J,
+            wo.multiplier_tolerance * bound.bound_used_J + 1e-9 * bound.bound_used_J + 1e-3);
+  // The same bound, bit for bit, on one thread and on two.
+  WindowBoundOptions one_thread = wo, two_threads = wo;
+  one_thread.threads = 1;
+  two_threads.threads = 2;
+  EXPECT_EQ(window_used_regen_bound(fleet.profile(), limits_of(p), one_thread).bound_used_J,
+            window_used_regen_bound(fleet.profile(), limits_of(p), two_threads).bound_used_J);
+  // Any other multiplier: a valid bound too, never a lower one.
+  for (int i = 1; i <= 3; ++i) {
+    WindowBoundOptions one = wo;
+    one.max_dual_evaluations = i;
+    EXPECT_GE(window_used_regen_bound(fleet.profile(), limits_of(p), one).bound_used_J,
+              bound.dual_floor_J);
+  }
+}
+
+// The power-flow model certifies with the window bound, and the optimiser's gap covers its true
+// shortfall from the brute-force optimum.
+TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
+  const FleetProblem p = testing::small_fleet(5, 90, 140, 500);
+  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  auto balance = fleet.make_balance();
+  double best = 0.0;
+  for_each_timetable(p, [&](const std::vector<int>& h) {
+    balance->place_all(departures_from_headways(h));
+    best = std::max(best, to_joules(balance->used()));
+  });
+  const energy::FleetLowerBound lb = fleet.model().lower_bound();
+  EXPECT_EQ(lb.name, "window bound");
+  EXPECT_GE(lb.used_regen_J, best * (1 - 1e-12));
+  HeadwayOptimiserOptions opt;
+  opt.moves_per_run = 2000;
+  opt.polish_window_s = 60;
+  const HeadwayOptimiserResult r = optimise_headways(fleet, opt);
+  EXPECT_LE(r.summary.used_regen_J, best * (1 + 1e-12));
+  EXPECT_GE(r.summary.bound_used_regen_J, best * (1 - 1e-12));
+  EXPECT_GE(r.summary.gap_fraction * r.summary.substation_J,
+            (best - r.summary.used_regen_J) * (1 - 1e-9));
+  EXPECT_NE(r.summary.method.find("window bound"), std::string::npos) << r.summary.method;
+}
+
+TEST(WindowBound, NotApplicableWithSectionsOrPeakClasses) {
+  const FleetProblem p = testing::small_fleet(4, 80, 140, 330);
+  EnergyModelOptions o = tenth_of_a_second();
+  o.model = "sections";
+  o.section_boundaries_m = {2000.0};
+  const TestFleet sections(testing::small_pattern().trip, p, o);
+  EXPECT_FALSE(window_used_regen_bound(sections.profile(), limits_of(p)).applicable);
+  EXPECT_EQ(sections.model().lower_bound().name, "pair bound");
+  FleetProblem peak = p;
+  peak.peak_windows = {{0, 100}};
+  EXPECT_EQ(limits_of(peak).headway_classes, 2);
+  const TestFleet power_flow(testing::small_pattern().trip, p, tenth_of_a_second());
+  EXPECT_FALSE(window_used_regen_bound(power_flow.profile(), limits_of(peak)).applicable);
+  std::string why;
+  WindowBoundOptions bad;
+  bad.short_cell_s = 0;
+  EXPECT_FALSE(bad.IsValid(&why));
+  EXPECT_NE(why.find("short_cell_s"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ecorail::fleet
