@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "fleet/headway_dp.hpp"
+#include "fleet/regime_start.hpp"
 #include "fleet/search_support.hpp"
 #include "fleet/windowed_dp.hpp"
 
@@ -110,7 +111,8 @@ struct RunResult {
 // Simulated annealing on the departures of trains 1..N-2, minimising the substation energy.
 RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan& plan,
                  std::vector<int> t, std::uint64_t seed, std::uint64_t run, long moves,
-                 Clock::time_point t0, double limit_s) {
+                 Clock::time_point t0, double limit_s, bool block_moves,
+                 double temperature_scale = 1.0) {
   const auto draw = [&](std::uint64_t move, std::uint64_t k) {
     return counter_draw(seed, run, move, k, plan.draw_salt);
   };
@@ -135,7 +137,7 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
     balance.move(k, back);
     ++samples;
   }
-  const double t_start = samples > 0 ? std::max(1.0, mean / samples) : 1.0;
+  const double t_start = temperature_scale * (samples > 0 ? std::max(1.0, mean / samples) : 1.0);
   const double cool = std::pow(1e-3, 1.0 / static_cast<double>(moves));
   double temperature = t_start;
   MicroJoules current = balance.substation();
@@ -147,6 +149,33 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
     }
     const std::uint64_t counter = m + plan.draw_offset;
     const int k = 1 + static_cast<int>(draw(counter, 0) % (n - 2));
+    if (block_moves && n > 4 && draw(counter, 3) % 4 == 0) {
+      // A block of consecutive trains shifted together: the headways inside keep their lengths
+      // (their clock classes are checked again), the two at its ends change.
+      const int len = 2 + static_cast<int>((draw(counter, 3) >> 8) % 7);
+      const int last = std::min(n - 2, k + len - 1);
+      const int d = static_cast<int>(draw(counter, 1) % 61) - 30;
+      if (d == 0) continue;
+      bool ok = true;
+      for (int j = k - 1; j <= last && ok; ++j) {
+        const int from = t[j] + (j >= k ? d : 0), to = t[j + 1] + (j + 1 <= last ? d : 0);
+        ok = p.headway_allowed(from, to);
+      }
+      if (!ok) continue;
+      MicroJoules delta = 0;
+      for (int j = k; j <= last; ++j) delta += balance.move(j, t[j] + d);
+      ++out.moves;
+      const bool accept = delta <= 0 || uniform01(draw(counter, 2)) <
+                                            std::exp(-static_cast<double>(delta) / temperature);
+      if (!accept) {
+        for (int j = k; j <= last; ++j) balance.move(j, t[j]);
+        continue;
+      }
+      for (int j = k; j <= last; ++j) t[j] += d;
+      current += delta;
+      if (current < out.substation) out.substation = current, out.departures = t;
+      continue;
+    }
     auto [lo, hi] = feasible_range(p, t, k);
     lo = std::max(lo, t[k] - 30);
     hi = std::min(hi, t[k] + 30);
@@ -217,6 +246,9 @@ bool HeadwayOptimiserOptions::IsValid(std::string* error) const {
     return false;
   };
   if (restarts < 0 || restarts > 1000) return fail("restarts: expected 0 to 1000");
+  if (rounds < 0 || rounds > 1000000) return fail("rounds: expected 0 to 1000000");
+  if (!(reanneal_temperature > 0.0 && reanneal_temperature <= 1.0))
+    return fail("reanneal_temperature: expected a fraction in (0, 1]");
   if (moves_per_run < 0) return fail("moves_per_run: expected >= 0");
   if (polish_window_s < 0 || polish_window_s > 10000)
     return fail("polish_window_s: expected 0 to 10000 s");
@@ -262,8 +294,8 @@ std::string HeadwayOptimiserSummary::FullReport() const {
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "  exact: %s\n  best start (used regen): %.1f kJ\n  moves evaluated: %ld\n"
-                "  DP states: %ld\n  time limit reached: %s\n",
-                exact ? "yes" : "no", start_used_J / 1e3, moves, dp_states,
+                "  DP states: %ld\n  further rounds: %d\n  time limit reached: %s\n",
+                exact ? "yes" : "no", start_used_J / 1e3, moves, dp_states, rounds,
                 time_limit_reached ? "yes" : "no");
   out += buf;
   if (pair_sum_J > 0.0) {
@@ -331,96 +363,167 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     throw std::invalid_argument("the " + std::string(model.name()) +
                                 " model has neither a headway decomposition nor a balance");
 
-  // Starts: the exact optimum of the two-train approximation (with peak windows: the windowed
-  // DP's, the same values for both classes), and the uniform timetable.
+  // The bound holds for every timetable of the problem, whatever the search finds: it is taken
+  // first, so that the time after the search is only the result's own evaluation.
+  const energy::FleetLowerBound bound = model.lower_bound();
+  const double bound_used = bound.used_regen_J;
+
+  // Starts: the DP over the trip's periodic regimes (fleet/regime_start.hpp), the exact
+  // optimum of the two-train approximation (with peak windows: the windowed DP's, the same
+  // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
+  std::vector<std::vector<int>> starts;
+  std::string method_starts;
+  if (options.regime_start && plan.price_starts && !past(t0, options.time_limit_s)) {
+    RegimeStart r = build_regime_start(*coarse, p, threads);
+    if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
+      starts.push_back(std::move(r.departures_s));
+      method_starts = "periodic regimes on a " + std::to_string(r.grid_s) + " s grid, ";
+    }
+  }
+  report("periodic regimes", 0.0, bound_used);
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
-  report("two-train approximation", 0.0, NAN);
-  std::vector<std::vector<int>> starts;
+  report("two-train approximation", 0.0, bound_used);
   if (p.windowed())
     starts.push_back(departures_from_headways(maximise_windowed(p, both_classes(pair)).headways_s));
   else
     starts.push_back(departures_from_headways(maximise_separable(domain_of(p), pair).headways_s));
   starts.push_back(departures_from_headways(uniform_headways(p)));
+  double evaluate_s = 0.0, traction_J = NAN;  // traction: the same for every timetable
   if (plan.price_starts) {
-    for (const auto& t : starts)
-      s.start_used_J = std::max(s.start_used_J, model.evaluate(t).total.used_regen_J);
+    for (const auto& t : starts) {
+      const auto e0 = Clock::now();
+      const FleetEvaluation e = model.evaluate(t);
+      s.start_used_J = std::max(s.start_used_J, e.total.used_regen_J);
+      traction_J = e.total.traction_J;
+      evaluate_s = std::max(evaluate_s, seconds_since(e0));
+    }
   }
-  report("starts", s.start_used_J, NAN);
+  report("starts", s.start_used_J, bound_used);
+  // The search ends early enough for the result's evaluation to keep the limit too.
+  const double search_limit =
+      options.time_limit_s > 0.0 ? std::max(1e-9, options.time_limit_s - 2.0 * evaluate_s) : 0.0;
 
-  // Annealing: every start, restarts times; the model's share of the time limit.
-  const int per_start =
-      plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
-  const long moves = options.restarts == 0 ? 0 : options.moves_per_run;
-  const int runs = static_cast<int>(starts.size()) * per_start;
-  const double anneal_limit = plan.anneal_share_of_time_limit * options.time_limit_s;
-  std::vector<RunResult> results(runs);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (int r = 0; r < runs; ++r) {
-    const std::unique_ptr<FleetBalance> balance = coarse->make_balance(1);
-    results[r] = anneal(*balance, p, plan, starts[r % starts.size()], options.seed, r, moves, t0,
-                        anneal_limit);
-  }
-  std::vector<std::vector<int>> candidates;
-  std::size_t best_run = 0;
-  for (std::size_t r = 0; r < results.size(); ++r) {
-    s.moves += results[r].moves;
-    s.time_limit_reached |= results[r].stopped;
-    if (results[r].substation < results[best_run].substation) best_run = r;
-  }
-  if (plan.polish_every_run) {
-    for (const auto& r : results) candidates.push_back(r.departures);
-    if (candidates.empty()) candidates = starts;
-  } else {
-    candidates.push_back(results[best_run].departures);
-  }
-  report("annealing done", s.start_used_J, NAN);
-
-  // Polish each candidate through the plan's stages (candidates side by side, each stage's
-  // balance on one thread; one candidate: its balance on every thread). The best wins (ties:
-  // the first), so the outcome does not depend on which thread ran what.
+  // The polish grids of the plan's stages.
   std::vector<std::unique_ptr<FleetEnergyModel>> grids;
   for (const SearchPlan::Polish& stage : plan.polish) {
     const double step = polish_step(stage, options.anneal_step_s);
     grids.push_back(stage.step_s == 0.0 ? nullptr : model.on_grid(step));
   }
-  const int n_candidates = static_cast<int>(candidates.size());
-  const int balance_threads = n_candidates == 1 ? threads : 1;
-  std::vector<MicroJoules> polished(n_candidates, 0);
-  std::vector<long> polish_moves(n_candidates, 0);
-  std::vector<char> stopped(n_candidates, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_candidates > 1)
-  for (int c = 0; c < n_candidates; ++c) {
-    bool stop = false;
-    for (std::size_t i = 0; i < plan.polish.size(); ++i) {
-      const SearchPlan::Polish& stage = plan.polish[i];
-      const FleetEnergyModel& grid = grids[i] ? *grids[i] : model;
-      if (stop || (stage.skip_on_search_grid &&
-                   grid.options().ticks_per_second() == coarse->options().ticks_per_second()))
-        continue;
-      const int window = stage.window_s < 0 ? options.polish_window_s
-                                            : std::min(stage.window_s, options.polish_window_s);
-      const std::unique_ptr<FleetBalance> balance = grid.make_balance(balance_threads);
-      polish_moves[c] +=
-          polish(*balance, p, candidates[c], window, stage.sweeps, t0, options.time_limit_s, &stop);
-      polished[c] = balance->substation();
+  // Anneals the runs (run r from start_of[r], its own counter-based draws), polishes their
+  // results (or only the best) through the plan's stages and returns the best polished
+  // timetable (ties: the lowest run), all on the model's grid; *stopped when a limit cut it.
+  struct Round {
+    std::vector<int> best;
+    MicroJoules substation = 0;
+    bool stopped = false;
+  };
+  const auto search_round = [&](const std::vector<std::vector<int>>& start_of,
+                                const std::vector<std::uint64_t>& run_id,
+                                const std::vector<double>& temperature, long moves,
+                                double anneal_limit) {
+    Round out;
+    const int runs = static_cast<int>(start_of.size());
+    std::vector<RunResult> results(runs);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int r = 0; r < runs; ++r) {
+      const std::unique_ptr<FleetBalance> balance = coarse->make_balance(1);
+      results[r] = anneal(*balance, p, plan, start_of[r], options.seed, run_id[r], moves, t0,
+                          anneal_limit, options.block_moves, temperature[r]);
     }
-    stopped[c] = stop;
-  }
-  std::size_t best_c = 0;
-  for (int c = 0; c < n_candidates; ++c) {
-    s.moves += polish_moves[c];
-    s.time_limit_reached |= stopped[c] != 0;
-    if (polished[c] < polished[best_c]) best_c = c;
-  }
-  const std::vector<int>& best = candidates[best_c];
-  report("polish", 0.0, NAN);
+    std::vector<std::vector<int>> candidates;
+    std::size_t best_run = 0;
+    for (std::size_t r = 0; r < results.size(); ++r) {
+      s.moves += results[r].moves;
+      out.stopped |= results[r].stopped;
+      if (results[r].substation < results[best_run].substation) best_run = r;
+    }
+    if (plan.polish_every_run) {
+      for (const auto& r : results) candidates.push_back(r.departures);
+    } else {
+      candidates.push_back(results[best_run].departures);
+    }
+    // Candidates side by side, each stage's balance on one thread; one candidate: its balance
+    // on every thread. The best wins (ties: the first), whichever thread ran what.
+    const int n_candidates = static_cast<int>(candidates.size());
+    const int balance_threads = n_candidates == 1 ? threads : 1;
+    std::vector<MicroJoules> polished(n_candidates, 0);
+    std::vector<long> polish_moves(n_candidates, 0);
+    std::vector<char> stopped(n_candidates, 0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_candidates > 1)
+    for (int c = 0; c < n_candidates; ++c) {
+      bool stop = false;
+      for (std::size_t i = 0; i < plan.polish.size(); ++i) {
+        const SearchPlan::Polish& stage = plan.polish[i];
+        const FleetEnergyModel& grid = grids[i] ? *grids[i] : model;
+        if (stop || (stage.skip_on_search_grid &&
+                     grid.options().ticks_per_second() == coarse->options().ticks_per_second()))
+          continue;
+        const int window = stage.window_s < 0 ? options.polish_window_s
+                                              : std::min(stage.window_s, options.polish_window_s);
+        const std::unique_ptr<FleetBalance> balance = grid.make_balance(balance_threads);
+        polish_moves[c] +=
+            polish(*balance, p, candidates[c], window, stage.sweeps, t0, search_limit, &stop);
+        polished[c] = balance->substation();
+      }
+      stopped[c] = stop;
+    }
+    std::size_t best_c = 0;
+    for (int c = 0; c < n_candidates; ++c) {
+      s.moves += polish_moves[c];
+      out.stopped |= stopped[c] != 0;
+      if (polished[c] < polished[best_c]) best_c = c;
+    }
+    out.best = candidates[best_c];
+    out.substation = polished[best_c];
+    return out;
+  };
 
-  const energy::FleetLowerBound bound = model.lower_bound();
-  out.headways_s = headways_from_departures(best);
-  out.evaluation = model.evaluate(best);
-  s.method = "annealing (" + std::to_string(runs) + " runs) and polish" + plan.method_note +
+  // Round 0: every start, restarts times, the model's share of the time limit for annealing.
+  const int per_start =
+      plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
+  const long moves = options.restarts == 0 ? 0 : options.moves_per_run;
+  int runs = static_cast<int>(starts.size()) * per_start;
+  std::vector<std::vector<int>> start_of;
+  std::vector<std::uint64_t> run_id;
+  for (int r = 0; r < runs; ++r) {
+    start_of.push_back(starts[r % starts.size()]);
+    run_id.push_back(r);
+  }
+  if (runs == 0) {  // no annealing: the starts are polished as they are
+    start_of = starts;
+    for (std::size_t r = 0; r < starts.size(); ++r) run_id.push_back(r);
+  }
+  Round best = search_round(start_of, run_id, std::vector<double>(start_of.size(), 1.0),
+                            runs == 0 ? 0 : moves, plan.anneal_share_of_time_limit * search_limit);
+  s.time_limit_reached = best.stopped;
+  report("round 0", traction_J - to_joules(best.substation), bound_used);
+
+  // Anytime rounds: while time remains (with a limit) or for options.rounds rounds (without),
+  // two runs a round: one re-anneals the best so far from a lower temperature, one anneals a
+  // start afresh with new draws. A round a limit cuts short is dropped, so a run with more time
+  // continues the run with less exactly (the same rounds in the same order, then more) and its
+  // result is never worse.
+  for (int round = 1; !best.stopped && runs > 0; ++round) {
+    if (options.time_limit_s > 0.0 ? past(t0, search_limit) : round > options.rounds) break;
+    const std::vector<std::vector<int>> from = {best.best, starts[round % starts.size()]};
+    const std::vector<std::uint64_t> ids = {1000003ULL * round, 1000003ULL * round + 1};
+    const Round r = search_round(from, ids, {options.reanneal_temperature, 1.0},
+                                 std::max<long>(1, moves / 2), search_limit);
+    if (r.stopped) {
+      s.time_limit_reached = true;
+      break;
+    }
+    ++s.rounds;
+    if (r.substation < best.substation) best.best = r.best, best.substation = r.substation;
+    report("round " + std::to_string(round), traction_J - to_joules(best.substation), bound_used);
+  }
+
+  out.headways_s = headways_from_departures(best.best);
+  out.evaluation = model.evaluate(best.best);
+  s.method = method_starts + "annealing (" + std::to_string(runs) + " runs, " +
+             std::to_string(s.rounds) + " further rounds) and polish" + plan.method_note +
              (bound.name.empty() ? "" : ", " + bound.name);
   s.used_regen_J = out.evaluation.used_regen_J();
   s.substation_J = out.evaluation.total.substation_J();
@@ -429,7 +532,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   s.curtailed_traction_J =
       out.evaluation.network ? out.evaluation.network->curtailed_traction_J : 0.0;
   s.gap_fraction = bound.exists() ? model.gap_fraction(out.evaluation, bound) : NAN;
-  s.pair_sum_J = model.pair_sum_J(best);
+  s.pair_sum_J = model.pair_sum_J(best.best);
   settle_termination(s, options.gap_fraction,
                      out.evaluation.network && out.evaluation.network->unsolved_instants > 0);
   s.wall_s = seconds_since(t0);
