@@ -149,10 +149,10 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
     }
     const std::uint64_t counter = m + plan.draw_offset;
     const int k = 1 + static_cast<int>(draw(counter, 0) % (n - 2));
-    if (block_moves && n > 4 && draw(counter, 3) % 4 == 0) {
+    if (block_moves && n > 4 && draw(counter, 3) % 8 == 0) {
       // A block of consecutive trains shifted together: the headways inside keep their lengths
       // (their clock classes are checked again), the two at its ends change.
-      const int len = 2 + static_cast<int>((draw(counter, 3) >> 8) % 7);
+      const int len = 2 + static_cast<int>((draw(counter, 3) >> 8) % 4);
       const int last = std::min(n - 2, k + len - 1);
       const int d = static_cast<int>(draw(counter, 1) % 61) - 30;
       if (d == 0) continue;
@@ -368,20 +368,25 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   const energy::FleetLowerBound bound = model.lower_bound();
   const double bound_used = bound.used_regen_J;
 
-  // Starts: the DP over the trip's periodic regimes (fleet/regime_start.hpp), the exact
+  // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp), the
+  // exact
   // optimum of the two-train approximation (with peak windows: the windowed DP's, the same
   // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
   std::vector<std::vector<int>> starts;
   std::string method_starts;
-  if (options.regime_start && plan.price_starts && !past(t0, options.time_limit_s)) {
+  // A start built from the problem's structure is annealed from a lower temperature (that of
+  // the anytime rounds' re-annealing): from the full one its structure would be lost.
+  std::vector<double> start_temperature;
+  if (options.regime_start && plan.price_starts && p.windowed()) {
     RegimeStart r = build_regime_start(*coarse, p, threads);
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
+      start_temperature.push_back(options.reanneal_temperature);
       method_starts = "periodic regimes on a " + std::to_string(r.grid_s) + " s grid, ";
     }
   }
-  report("periodic regimes", 0.0, bound_used);
+  report("relaxed start", 0.0, bound_used);
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
   report("two-train approximation", 0.0, bound_used);
@@ -390,11 +395,16 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   else
     starts.push_back(departures_from_headways(maximise_separable(domain_of(p), pair).headways_s));
   starts.push_back(departures_from_headways(uniform_headways(p)));
+  start_temperature.resize(starts.size(), 1.0);
   double evaluate_s = 0.0, traction_J = NAN;  // traction: the same for every timetable
+  std::size_t best_start = 0;
+  MicroJoules best_start_substation = 0;
   if (plan.price_starts) {
-    for (const auto& t : starts) {
+    for (std::size_t i = 0; i < starts.size(); ++i) {
       const auto e0 = Clock::now();
-      const FleetEvaluation e = model.evaluate(t);
+      const FleetEvaluation e = model.evaluate(starts[i]);
+      const auto sub = static_cast<MicroJoules>(std::llround(e.total.substation_J() * 1e6));
+      if (i == 0 || sub < best_start_substation) best_start = i, best_start_substation = sub;
       s.start_used_J = std::max(s.start_used_J, e.total.used_regen_J);
       traction_J = e.total.traction_J;
       evaluate_s = std::max(evaluate_s, seconds_since(e0));
@@ -487,17 +497,18 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   int runs = static_cast<int>(starts.size()) * per_start;
   std::vector<std::vector<int>> start_of;
   std::vector<std::uint64_t> run_id;
-  for (int r = 0; r < runs; ++r) {
+  std::vector<double> temperature;
+  for (int r = 0; r < std::max<int>(runs, starts.size()); ++r) {  // runs 0: the starts polished
     start_of.push_back(starts[r % starts.size()]);
+    temperature.push_back(start_temperature[r % starts.size()]);
     run_id.push_back(r);
   }
-  if (runs == 0) {  // no annealing: the starts are polished as they are
-    start_of = starts;
-    for (std::size_t r = 0; r < starts.size(); ++r) run_id.push_back(r);
-  }
-  Round best = search_round(start_of, run_id, std::vector<double>(start_of.size(), 1.0),
-                            runs == 0 ? 0 : moves, plan.anneal_share_of_time_limit * search_limit);
+  Round best = search_round(start_of, run_id, temperature, runs == 0 ? 0 : moves,
+                            plan.anneal_share_of_time_limit * search_limit);
   s.time_limit_reached = best.stopped;
+  // A start priced on the model's grid better than every polished run stays the result.
+  if (plan.price_starts && best_start_substation < best.substation)
+    best.best = starts[best_start], best.substation = best_start_substation;
   report("round 0", traction_J - to_joules(best.substation), bound_used);
 
   // Anytime rounds: while time remains (with a limit) or for options.rounds rounds (without),
@@ -507,10 +518,12 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // result is never worse.
   for (int round = 1; !best.stopped && runs > 0; ++round) {
     if (options.time_limit_s > 0.0 ? past(t0, search_limit) : round > options.rounds) break;
-    const std::vector<std::vector<int>> from = {best.best, starts[round % starts.size()]};
+    const std::size_t fresh = round % starts.size();
+    const std::vector<std::vector<int>> from = {best.best, starts[fresh]};
     const std::vector<std::uint64_t> ids = {1000003ULL * round, 1000003ULL * round + 1};
-    const Round r = search_round(from, ids, {options.reanneal_temperature, 1.0},
-                                 std::max<long>(1, moves / 2), search_limit);
+    const Round r =
+        search_round(from, ids, {options.reanneal_temperature, start_temperature[fresh]},
+                     std::max<long>(1, moves / 2), search_limit);
     if (r.stopped) {
       s.time_limit_reached = true;
       break;

@@ -61,8 +61,9 @@ struct HeadwayOptimiserOptions {
   // with a time limit as many as fit (a round the limit cuts short is dropped), else `rounds`.
   int rounds = 0;
   double reanneal_temperature = 0.1;
-  bool regime_start = true;  // a start from the trip's periodic regimes (regime_start.hpp)
-  bool block_moves = true;   // annealing also shifts blocks of consecutive trains
+  // With peak windows, a start from the trip's periodic regimes (regime_start.hpp).
+  bool regime_start = true;
+  bool block_moves = true;  // annealing also shifts blocks of consecutive trains
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
