@@ -1,9 +1,11 @@
-// A time limit is one for the whole headway search, polish included, and a search it stops is
-// NO_CONVERGENCE with its gap stated, never CONVERGENCE.
+// A time limit is one for the whole headway search (polish included) and for the whole pattern
+// search (every stage), and a search it stops is NO_CONVERGENCE with its gap stated, never
+// CONVERGENCE.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "fleet/search_support.hpp"
 #include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
@@ -48,6 +50,35 @@ TEST(HeadwayOptimiserTimeLimit, ConvergenceOnlyWithinTheGapTolerance) {
   const HeadwayOptimiserResult wide = optimise_headways(fleet, opt);
   EXPECT_EQ(wide.headways_s, tight.headways_s);
   EXPECT_EQ(wide.summary.termination, Termination::CONVERGENCE);
+}
+
+}  // namespace
+}  // namespace ecorail::fleet
+
+namespace ecorail::fleet {
+namespace {
+
+// The pattern search keeps one limit for the whole run: the headways for the start pattern,
+// the pattern moves, the headways for the pattern found and the per-train stage together,
+// with budgets that would take far longer. The margin covers one pattern move (a section
+// re-solve) and the final account of a 12-train fleet.
+TEST(PatternSearchTimeLimit, WholeRunKeepsTheLimit) {
+  FleetProblem problem = testing::small_fleet(12, 60, 200, 11 * 110);
+  problem.trip_time_s = 480.0;  // the small pattern's trip
+  EnergyModelOptions model;
+  model.time_step_s = 0.1;
+  PatternSearchOptions o;
+  o.headways.moves_per_run = 50000000;  // minutes of annealing without the limit
+  o.per_train_patterns = true;
+  o.time_limit_s = 3.0;
+  const auto& lib = testing::small_library();
+  const auto t0 = SearchClock::now();
+  const PatternSearchResult r = optimise_pattern(lib, problem, model, testing::small_pattern(), o);
+  const double wall = seconds_since(t0);
+  EXPECT_LE(wall, o.time_limit_s + 1.0);
+  EXPECT_LE(r.wall_s, o.time_limit_s + 1.0);
+  EXPECT_NE(r.timetable.summary.termination, Termination::CONVERGENCE);
+  EXPECT_EQ(departures_problem(problem, r.timetable.evaluation.departures_s), "");
 }
 
 }  // namespace
