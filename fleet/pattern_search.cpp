@@ -319,9 +319,12 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
         std::vector<FleetPattern> candidates;
         const FleetPattern current = snapped(out.per_train[k]);
         for (const PatternMove& m : moves) {
+          // Each new candidate may be a section re-solve: the limit is checked between them.
+          if ((out.time_limit_reached = per_train_out_of_time())) break;
           const std::optional<FleetPattern> p = moved(current, m, delta, problem, min_time);
           if (p && cache.fetch(*p)) candidates.push_back(*p);
         }
+        if (out.time_limit_reached) break;
         const int count = static_cast<int>(candidates.size());
         out.per_train_candidates += count;
         std::vector<energy::MicroJoules> change(count, 0);
