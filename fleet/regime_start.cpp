@@ -4,12 +4,15 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <utility>
 
 #include "fleet/windowed_classes.hpp"
 
 namespace ecorail::fleet {
 
 namespace {
+
+constexpr int kRefinedRegimes = 8;  // best regimes of each class refined to whole seconds
 
 // Blocks of one class: single headways (one entry per grid value) and alternating pairs.
 struct ClassBlocks {
@@ -124,6 +127,45 @@ RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<Periodic
   return out;
 }
 
+std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model,
+                                           std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
+                                           int top, int threads) {
+  std::vector<PeriodicRegime> best = regimes;
+  std::stable_sort(best.begin(), best.end(), [](const auto& x, const auto& y) {
+    return x.used_per_headway_J() > y.used_per_headway_J();
+  });
+  best.resize(std::min<std::size_t>(best.size(), top));
+  const int n = static_cast<int>(best.size());
+  std::vector<std::vector<PeriodicRegime>> found(n);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    // Hill climbing by whole seconds (a constant stays a constant).
+    PeriodicRegime r = best[i];
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (auto [da, db] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}}) {
+        if (r.a_s == r.b_s && da != db) continue;
+        const int a = r.a_s + da, b = r.b_s + db;
+        if (a < lo_s || b > hi_s || a > b) continue;
+        const double v = steady_used_per_period_J(model, a, b);
+        if (v > r.used_per_period_J) r = {a, b, v}, moved = true;
+      }
+    }
+    found[i].push_back(r);
+    // A pair's own constants, so that its gain over them is known.
+    if (r.a_s != r.b_s)
+      for (int h : {r.a_s, r.b_s})
+        found[i].push_back({h, h, steady_used_per_period_J(model, h, h)});
+  }
+  for (const auto& f : found)
+    for (const PeriodicRegime& r : f) {
+      bool known = false;
+      for (const PeriodicRegime& q : regimes) known |= q.a_s == r.a_s && q.b_s == r.b_s;
+      if (!known) regimes.push_back(r);
+    }
+  return regimes;
+}
+
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& p,
                                int threads) {
   const int g = regime_grid_s(p);
@@ -133,14 +175,19 @@ RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const Flee
   o.threads = threads;
   o.lo_s = p.headway_min_s;
   o.hi_s = p.headway_max_s;
-  std::vector<PeriodicRegime> offpeak = analyse_periodic_regimes(model, o);
+  std::vector<PeriodicRegime> offpeak = refine_regimes(model, analyse_periodic_regimes(model, o),
+                                                       o.lo_s, o.hi_s, kRefinedRegimes, threads);
   std::vector<PeriodicRegime> peak;
   if (p.windowed()) {
     o.lo_s = p.peak_headway_min_s;
     o.hi_s = p.peak_headway_max_s;
-    peak = analyse_periodic_regimes(model, o);
+    peak = refine_regimes(model, analyse_periodic_regimes(model, o), o.lo_s, o.hi_s,
+                          kRefinedRegimes, threads);
   }
-  return regime_start_from(p, g, std::move(offpeak), std::move(peak));
+  // The refined regimes lie off the analysis grid: the DP then steps by whole seconds.
+  RegimeStart out = regime_start_from(p, 1, std::move(offpeak), std::move(peak));
+  out.grid_s = g;
+  return out;
 }
 
 }  // namespace ecorail::fleet

@@ -1,6 +1,7 @@
 // A start for the headway search built from the trip's periodic regimes
 // (fleet/periodic_regimes.hpp): every headway class (peak, off-peak) is analysed on a coarse
-// grid; then a DP over (headways so far, clock time) on that grid fills the span with blocks:
+// grid and its best regimes refined to whole seconds (resonances are sharper than the grid);
+// then a DP over (headways so far, clock time) fills the span with blocks:
 // single headways valued by their constant regime, and alternating pairs of the best resonant
 // regimes of each class (those worth more than their two constants side by side) valued by their
 // pair regime. Peak windows are thus filled with as many trains as their best peak regime makes
@@ -32,7 +33,14 @@ RegimeStart regime_start_from(const FleetProblem& problem, int grid_s,
                               std::vector<PeriodicRegime> offpeak, std::vector<PeriodicRegime> peak,
                               int pairs_per_class = 16);
 
-// Analyses and DP; the model is the one the search anneals on.
+// The `top` best regimes (by used energy per headway) each refined by hill climbing over whole
+// seconds within [lo_s, hi_s], added to the list with the constants of each refined pair.
+std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model,
+                                           std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
+                                           int top, int threads);
+
+// Analyses on the grid, the best regimes refined to whole seconds, and the DP by whole seconds;
+// the model is the one the search anneals on.
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& problem,
                                int threads);
 
