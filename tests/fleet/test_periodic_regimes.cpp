@@ -52,6 +52,30 @@ TEST(PeriodicRegimes, AnalysisListsTheGridAndItsValues) {
     EXPECT_DOUBLE_EQ(g.used_per_period_J, steady_used_per_period_J(fleet.model(), g.a_s, g.b_s));
 }
 
+// Refinement to whole seconds: the best regime (a hill climb from the grid's best) is a local
+// maximum: no one-second step of it, independently priced, is better.
+TEST(PeriodicRegimes, RefinedRegimesAreLocalMaxima) {
+  const TestFleet fleet = small_model(1.0);
+  const energy::FleetEnergyModel& m = fleet.model();
+  PeriodicRegimeOptions o;
+  o.lo_s = 60;
+  o.hi_s = 140;
+  o.grid_s = 20;
+  o.max_spread_s = 40;
+  const std::vector<PeriodicRegime> grid = analyse_periodic_regimes(m, o);
+  const std::vector<PeriodicRegime> refined = refine_regimes(m, grid, o.lo_s, o.hi_s, 2, 2);
+  ASSERT_GT(refined.size(), grid.size());
+  double best = refined.front().used_per_period_J;
+  const PeriodicRegime* top = &refined.front();
+  for (const PeriodicRegime& r : refined)
+    if (r.used_per_period_J > best) best = r.used_per_period_J, top = &r;
+  for (auto [da, db] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}}) {
+    const int a = top->a_s + da, b = top->b_s + db;
+    if (a < o.lo_s || b > o.hi_s || a > b || (top->a_s == top->b_s && da != db)) continue;
+    EXPECT_LE(steady_used_per_period_J(m, a, b), top->used_per_period_J) << a << "/" << b;
+  }
+}
+
 // The regime DP on hand-made values: a resonant pair worth more than its constants is used to
 // fill the span, and the result keeps the problem's rules and adds up to the DP's value.
 TEST(RegimeStart, FillsTheSpanWithTheBestBlocks) {
