@@ -293,7 +293,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     for (int r = 0; r < runs; ++r) {
       const std::unique_ptr<FleetBalance> balance = coarse->make_balance(1);
       results[r] = anneal(*balance, p, plan, start_of[r], options.seed, run_id[r], moves, t0,
-                          anneal_limit, options.block_moves, temperature[r]);
+                          anneal_limit, options.block_moves && p.windowed(), temperature[r]);
     }
     std::vector<std::vector<int>> candidates;
     std::size_t best_run = 0;

@@ -63,7 +63,8 @@ struct HeadwayOptimiserOptions {
   double reanneal_temperature = 0.1;
   // With peak windows, a start from the trip's periodic regimes (regime_start.hpp).
   bool regime_start = true;
-  bool block_moves = true;  // annealing also shifts blocks of consecutive trains
+  // With peak windows the annealing also shifts blocks of consecutive trains (classes kept).
+  bool block_moves = true;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
