@@ -61,9 +61,9 @@ namespace {
 // The pattern search keeps one limit for the whole run: the headways for the start pattern,
 // the pattern moves, the headways for the pattern found and the per-train stage together,
 // with budgets that would take minutes. What no limit can cut short (each headway stage's bound,
-// starts and final account) is measured in the same run
-// by the same search with a limit of a millisecond, so the margin follows the machine's load;
-// 1 s more covers one pattern move (a section re-solve) begun just before the limit.
+// starts and final account) is measured in the same run by the same search with a limit of a
+// millisecond, so the margin follows the machine's load; 1 s more covers one pattern move (a
+// section re-solve) begun just before the limit.
 TEST(PatternSearchTimeLimit, WholeRunKeepsTheLimit) {
   FleetProblem problem = testing::small_fleet(12, 60, 200, 11 * 110);
   problem.trip_time_s = 480.0;  // the small pattern's trip
