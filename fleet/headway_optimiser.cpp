@@ -222,8 +222,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   const double bound_used = bound.used_regen_J;
 
   // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp), the
-  // exact
-  // optimum of the two-train approximation (with peak windows: the windowed DP's, the same
+  // exact optimum of the two-train approximation (with peak windows: the windowed DP's, the same
   // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
   std::vector<std::vector<int>> starts;
@@ -239,7 +238,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       method_starts = "periodic regimes on a " + std::to_string(r.grid_s) + " s grid, ";
     }
   }
-  report("relaxed start", 0.0, bound_used);
+  report("periodic regimes", 0.0, bound_used);
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
   report("two-train approximation", 0.0, bound_used);
@@ -362,7 +361,11 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // A start priced on the model's grid better than every polished run stays the result.
   if (plan.price_starts && best_start_substation < best.substation)
     best.best = starts[best_start], best.substation = best_start_substation;
-  report("round 0", traction_J - to_joules(best.substation), bound_used);
+  // Progress in used energy where the starts were priced (else 0, as before any result).
+  const auto used_of = [&](MicroJoules substation) {
+    return std::isfinite(traction_J) ? traction_J - to_joules(substation) : 0.0;
+  };
+  report("round 0", used_of(best.substation), bound_used);
 
   // Anytime rounds: while time remains (with a limit) or for options.rounds rounds (without),
   // two runs a round: one re-anneals the best so far from a lower temperature, one anneals a
@@ -383,7 +386,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     }
     ++s.rounds;
     if (r.substation < best.substation) best.best = r.best, best.substation = r.substation;
-    report("round " + std::to_string(round), traction_J - to_joules(best.substation), bound_used);
+    report("round " + std::to_string(round), used_of(best.substation), bound_used);
   }
 
   out.headways_s = headways_from_departures(best.best);
