@@ -144,12 +144,13 @@ void run_optimise(const TimetableArgs& a) {
   o.seed = a.seed;
   o.time_limit_s = a.time_limit_s;
   o.restarts = a.restarts;
+  o.rounds = a.rounds;
   o.moves_per_run = a.moves;
   o.anneal_step_s = a.anneal_step_s;
   o.gap_fraction = a.gap;
   o.threads = a.problem.threads;
   std::string why;
-  if (!o.IsValid(&why)) bad("--restarts/--moves/--time-limit/--gap/--threads", why);
+  if (!o.IsValid(&why)) bad("--restarts/--rounds/--moves/--time-limit/--gap/--threads", why);
   fleet::TimetableStudy s = make_study(a);
   if (!a.quiet && isatty(STDERR_FILENO)) {
     o.progress = [](const fleet::OptimiserProgress& p) {
@@ -209,6 +210,10 @@ void add_timetable_command(CLI::App& app) {
   op->add_option("--restarts", opt_args.restarts, "annealing runs per start")
       ->capture_default_str();
   op->add_option("--moves", opt_args.moves, "annealing moves per run")->capture_default_str();
+  op->add_option("--rounds", opt_args.rounds,
+                 "further annealing rounds after the first when no --time-limit is given (with "
+                 "one, rounds run until it)")
+      ->capture_default_str();
   op->add_option("--anneal-step", opt_args.anneal_step_s, "time step of the annealing (s)")
       ->capture_default_str();
   op->add_option("--optimise", opt_args.optimise,

@@ -35,6 +35,7 @@ struct TimetableArgs {
   std::uint64_t seed = 1;
   double time_limit_s = 0.0;
   int restarts = 2;
+  int rounds = 0;  // optimise --rounds: anytime rounds without a time limit
   long moves = 2000000;
   double anneal_step_s = 1.0;
   std::string optimise = "headways";

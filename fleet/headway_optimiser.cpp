@@ -10,6 +10,8 @@
 #include <stdexcept>
 
 #include "fleet/headway_dp.hpp"
+#include "fleet/headway_moves.hpp"
+#include "fleet/regime_start.hpp"
 #include "fleet/search_support.hpp"
 #include "fleet/windowed_dp.hpp"
 
@@ -28,25 +30,9 @@ HeadwayDomain domain_of(const FleetProblem& p) {
   return {p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
 }
 
-// The departure range of train k (0 < k < N-1) given its neighbours (with peak windows: the
-// range of any class; allowed() then checks the classes of both headways).
-std::pair<int, int> feasible_range(const FleetProblem& p, const std::vector<int>& t, int k) {
-  const int lo = std::max(t[k - 1] + p.any_headway_min_s(), t[k + 1] - p.any_headway_max_s());
-  const int hi = std::min(t[k - 1] + p.any_headway_max_s(), t[k + 1] - p.any_headway_min_s());
-  return {lo, hi};
-}
-
-bool allowed(const FleetProblem& p, const std::vector<int>& t, int k, int d) {
-  return !p.windowed() || (p.headway_allowed(t[k - 1], d) && p.headway_allowed(d, t[k + 1]));
-}
-
 // The headway values of a table over [any min, any max] for both classes of a windowed problem.
 WindowedValue both_classes(const std::vector<double>& value) {
   return {value, value};
-}
-
-bool past(Clock::time_point t0, double limit_s) {
-  return limit_s > 0.0 && seconds_since(t0) > limit_s;
 }
 
 // The exact DP of a model whose used energy decomposes over headways.
@@ -100,110 +86,6 @@ HeadwayOptimiserResult solve_decomposed(const FleetEnergyModel& model, const Fle
   return out;
 }
 
-struct RunResult {
-  std::vector<int> departures;
-  MicroJoules substation = 0;
-  long moves = 0;
-  bool stopped = false;
-};
-
-// Simulated annealing on the departures of trains 1..N-2, minimising the substation energy.
-RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan& plan,
-                 std::vector<int> t, std::uint64_t seed, std::uint64_t run, long moves,
-                 Clock::time_point t0, double limit_s) {
-  const auto draw = [&](std::uint64_t move, std::uint64_t k) {
-    return counter_draw(seed, run, move, k, plan.draw_salt);
-  };
-  RunResult out;
-  balance.place_all(t);
-  out.departures = t;
-  out.substation = balance.substation();
-  const int n = p.trains;
-  if (n < 3 || moves == 0) return out;
-  // Temperature: from the mean size of a few proposals' changes down by 1000x.
-  double mean = 0.0;
-  int samples = 0;
-  for (int i = 0; i < plan.temperature_samples; ++i) {
-    const int k = 1 + static_cast<int>(draw(i, 0) % (n - 2));
-    auto [lo, hi] = feasible_range(p, t, k);
-    if (plan.samples_within_move_window) lo = std::max(lo, t[k] - 30), hi = std::min(hi, t[k] + 30);
-    if (hi <= lo) continue;
-    const int d = lo + static_cast<int>(draw(i, 1) % (hi - lo + 1));
-    if (!allowed(p, t, k, d)) continue;
-    const int back = t[k];
-    mean += std::fabs(static_cast<double>(balance.move(k, d)));
-    balance.move(k, back);
-    ++samples;
-  }
-  const double t_start = samples > 0 ? std::max(1.0, mean / samples) : 1.0;
-  const double cool = std::pow(1e-3, 1.0 / static_cast<double>(moves));
-  double temperature = t_start;
-  MicroJoules current = balance.substation();
-  const long check_mask = plan.time_check_every - 1;
-  for (long m = 0; m < moves; ++m, temperature *= cool) {
-    if ((m & check_mask) == 0 && past(t0, limit_s)) {
-      out.stopped = true;
-      break;
-    }
-    const std::uint64_t counter = m + plan.draw_offset;
-    const int k = 1 + static_cast<int>(draw(counter, 0) % (n - 2));
-    auto [lo, hi] = feasible_range(p, t, k);
-    lo = std::max(lo, t[k] - 30);
-    hi = std::min(hi, t[k] + 30);
-    if (hi <= lo) continue;
-    int d = lo + static_cast<int>(draw(counter, 1) % (hi - lo));
-    if (d >= t[k]) ++d;  // never the current departure
-    if (d > hi || !allowed(p, t, k, d)) continue;
-    const MicroJoules delta = balance.move(k, d);  // < 0: better
-    ++out.moves;
-    const bool accept = delta <= 0 || uniform01(draw(counter, 2)) <
-                                          std::exp(-static_cast<double>(delta) / temperature);
-    if (!accept) {
-      balance.move(k, t[k]);
-      continue;
-    }
-    t[k] = d;
-    current += delta;
-    if (current < out.substation) out.substation = current, out.departures = t;
-  }
-  return out;
-}
-
-// Tries every departure within +-window for every train in turn, keeping the best, until a sweep
-// changes nothing (at most `sweeps`); the time limit stops it between trains (*stopped set; the
-// timetable so far is kept).
-long polish(FleetBalance& balance, const FleetProblem& p, std::vector<int>& t, int window,
-            int sweeps, Clock::time_point t0, double limit_s, bool* stopped) {
-  long moves = 0;
-  balance.place_all(t);
-  for (int sweep = 0; sweep < sweeps && !*stopped; ++sweep) {
-    bool improved = false;
-    for (int k = 1; k + 1 < p.trains; ++k) {
-      if (past(t0, limit_s)) {
-        *stopped = true;
-        break;
-      }
-      auto [lo, hi] = feasible_range(p, t, k);
-      lo = std::max(lo, t[k] - window);
-      hi = std::min(hi, t[k] + window);
-      const int start = t[k];
-      MicroJoules best = balance.substation();
-      int best_d = start;
-      for (int d = lo; d <= hi; ++d) {
-        if (d == start || !allowed(p, t, k, d)) continue;
-        balance.move(k, d);
-        ++moves;
-        if (balance.substation() < best) best = balance.substation(), best_d = d;
-      }
-      balance.move(k, best_d);
-      improved |= best_d != start;
-      t[k] = best_d;
-    }
-    if (!improved) break;
-  }
-  return moves;
-}
-
 // The grid step of a polish stage (the model's own when 0).
 double polish_step(const SearchPlan::Polish& stage, double anneal_step_s) {
   return stage.step_s < 0.0 ? anneal_step_s : stage.step_s;
@@ -217,6 +99,9 @@ bool HeadwayOptimiserOptions::IsValid(std::string* error) const {
     return false;
   };
   if (restarts < 0 || restarts > 1000) return fail("restarts: expected 0 to 1000");
+  if (rounds < 0 || rounds > 1000000) return fail("rounds: expected 0 to 1000000");
+  if (!(reanneal_temperature > 0.0 && reanneal_temperature <= 1.0))
+    return fail("reanneal_temperature: expected a fraction in (0, 1]");
   if (moves_per_run < 0) return fail("moves_per_run: expected >= 0");
   if (polish_window_s < 0 || polish_window_s > 10000)
     return fail("polish_window_s: expected 0 to 10000 s");
@@ -262,8 +147,8 @@ std::string HeadwayOptimiserSummary::FullReport() const {
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "  exact: %s\n  best start (used regen): %.1f kJ\n  moves evaluated: %ld\n"
-                "  DP states: %ld\n  time limit reached: %s\n",
-                exact ? "yes" : "no", start_used_J / 1e3, moves, dp_states,
+                "  DP states: %ld\n  further rounds: %d\n  time limit reached: %s\n",
+                exact ? "yes" : "no", start_used_J / 1e3, moves, dp_states, rounds,
                 time_limit_reached ? "yes" : "no");
   out += buf;
   if (pair_sum_J > 0.0) {
@@ -331,96 +216,183 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     throw std::invalid_argument("the " + std::string(model.name()) +
                                 " model has neither a headway decomposition nor a balance");
 
-  // Starts: the exact optimum of the two-train approximation (with peak windows: the windowed
-  // DP's, the same values for both classes), and the uniform timetable.
+  // The bound holds for every timetable of the problem, whatever the search finds: it is taken
+  // first, so that the time after the search is only the result's own evaluation.
+  const energy::FleetLowerBound bound = model.lower_bound();
+  const double bound_used = bound.used_regen_J;
+
+  // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp), the
+  // exact optimum of the two-train approximation (with peak windows: the windowed DP's, the same
+  // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
+  std::vector<std::vector<int>> starts;
+  std::string method_starts;
+  // A start built from the problem's structure is annealed from a lower temperature (that of
+  // the anytime rounds' re-annealing): from the full one its structure would be lost.
+  std::vector<double> start_temperature;
+  if (options.regime_start && plan.price_starts && p.windowed()) {
+    RegimeStart r = build_regime_start(*coarse, p, threads);
+    if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
+      starts.push_back(std::move(r.departures_s));
+      start_temperature.push_back(options.reanneal_temperature);
+      method_starts = "periodic regimes on a " + std::to_string(r.grid_s) + " s grid, ";
+    }
+  }
+  report("periodic regimes", 0.0, bound_used);
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
-  report("two-train approximation", 0.0, NAN);
-  std::vector<std::vector<int>> starts;
+  report("two-train approximation", 0.0, bound_used);
   if (p.windowed())
     starts.push_back(departures_from_headways(maximise_windowed(p, both_classes(pair)).headways_s));
   else
     starts.push_back(departures_from_headways(maximise_separable(domain_of(p), pair).headways_s));
   starts.push_back(departures_from_headways(uniform_headways(p)));
+  start_temperature.resize(starts.size(), 1.0);
+  double evaluate_s = 0.0, traction_J = NAN;  // traction: the same for every timetable
+  std::size_t best_start = 0;
+  MicroJoules best_start_substation = 0;
   if (plan.price_starts) {
-    for (const auto& t : starts)
-      s.start_used_J = std::max(s.start_used_J, model.evaluate(t).total.used_regen_J);
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      const auto e0 = Clock::now();
+      const FleetEvaluation e = model.evaluate(starts[i]);
+      const auto sub = static_cast<MicroJoules>(std::llround(e.total.substation_J() * 1e6));
+      if (i == 0 || sub < best_start_substation) best_start = i, best_start_substation = sub;
+      s.start_used_J = std::max(s.start_used_J, e.total.used_regen_J);
+      traction_J = e.total.traction_J;
+      evaluate_s = std::max(evaluate_s, seconds_since(e0));
+    }
   }
-  report("starts", s.start_used_J, NAN);
+  report("starts", s.start_used_J, bound_used);
+  // The search ends early enough for the result's evaluation to keep the limit too.
+  const double search_limit =
+      options.time_limit_s > 0.0 ? std::max(1e-9, options.time_limit_s - 2.0 * evaluate_s) : 0.0;
 
-  // Annealing: every start, restarts times; the model's share of the time limit.
-  const int per_start =
-      plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
-  const long moves = options.restarts == 0 ? 0 : options.moves_per_run;
-  const int runs = static_cast<int>(starts.size()) * per_start;
-  const double anneal_limit = plan.anneal_share_of_time_limit * options.time_limit_s;
-  std::vector<RunResult> results(runs);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (int r = 0; r < runs; ++r) {
-    const std::unique_ptr<FleetBalance> balance = coarse->make_balance(1);
-    results[r] = anneal(*balance, p, plan, starts[r % starts.size()], options.seed, r, moves, t0,
-                        anneal_limit);
-  }
-  std::vector<std::vector<int>> candidates;
-  std::size_t best_run = 0;
-  for (std::size_t r = 0; r < results.size(); ++r) {
-    s.moves += results[r].moves;
-    s.time_limit_reached |= results[r].stopped;
-    if (results[r].substation < results[best_run].substation) best_run = r;
-  }
-  if (plan.polish_every_run) {
-    for (const auto& r : results) candidates.push_back(r.departures);
-    if (candidates.empty()) candidates = starts;
-  } else {
-    candidates.push_back(results[best_run].departures);
-  }
-  report("annealing done", s.start_used_J, NAN);
-
-  // Polish each candidate through the plan's stages (candidates side by side, each stage's
-  // balance on one thread; one candidate: its balance on every thread). The best wins (ties:
-  // the first), so the outcome does not depend on which thread ran what.
+  // The polish grids of the plan's stages.
   std::vector<std::unique_ptr<FleetEnergyModel>> grids;
   for (const SearchPlan::Polish& stage : plan.polish) {
     const double step = polish_step(stage, options.anneal_step_s);
     grids.push_back(stage.step_s == 0.0 ? nullptr : model.on_grid(step));
   }
-  const int n_candidates = static_cast<int>(candidates.size());
-  const int balance_threads = n_candidates == 1 ? threads : 1;
-  std::vector<MicroJoules> polished(n_candidates, 0);
-  std::vector<long> polish_moves(n_candidates, 0);
-  std::vector<char> stopped(n_candidates, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_candidates > 1)
-  for (int c = 0; c < n_candidates; ++c) {
-    bool stop = false;
-    for (std::size_t i = 0; i < plan.polish.size(); ++i) {
-      const SearchPlan::Polish& stage = plan.polish[i];
-      const FleetEnergyModel& grid = grids[i] ? *grids[i] : model;
-      if (stop || (stage.skip_on_search_grid &&
-                   grid.options().ticks_per_second() == coarse->options().ticks_per_second()))
-        continue;
-      const int window = stage.window_s < 0 ? options.polish_window_s
-                                            : std::min(stage.window_s, options.polish_window_s);
-      const std::unique_ptr<FleetBalance> balance = grid.make_balance(balance_threads);
-      polish_moves[c] +=
-          polish(*balance, p, candidates[c], window, stage.sweeps, t0, options.time_limit_s, &stop);
-      polished[c] = balance->substation();
+  // Anneals the runs (run r from start_of[r], its own counter-based draws), polishes their
+  // results (or only the best) through the plan's stages and returns the best polished
+  // timetable (ties: the lowest run), all on the model's grid; *stopped when a limit cut it.
+  struct Round {
+    std::vector<int> best;
+    MicroJoules substation = 0;
+    bool stopped = false;
+  };
+  const auto search_round = [&](const std::vector<std::vector<int>>& start_of,
+                                const std::vector<std::uint64_t>& run_id,
+                                const std::vector<double>& temperature, long moves,
+                                double anneal_limit) {
+    Round out;
+    const int runs = static_cast<int>(start_of.size());
+    std::vector<RunResult> results(runs);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int r = 0; r < runs; ++r) {
+      const std::unique_ptr<FleetBalance> balance = coarse->make_balance(1);
+      results[r] = anneal(*balance, p, plan, start_of[r], options.seed, run_id[r], moves, t0,
+                          anneal_limit, options.block_moves && p.windowed(), temperature[r]);
     }
-    stopped[c] = stop;
-  }
-  std::size_t best_c = 0;
-  for (int c = 0; c < n_candidates; ++c) {
-    s.moves += polish_moves[c];
-    s.time_limit_reached |= stopped[c] != 0;
-    if (polished[c] < polished[best_c]) best_c = c;
-  }
-  const std::vector<int>& best = candidates[best_c];
-  report("polish", 0.0, NAN);
+    std::vector<std::vector<int>> candidates;
+    std::size_t best_run = 0;
+    for (std::size_t r = 0; r < results.size(); ++r) {
+      s.moves += results[r].moves;
+      out.stopped |= results[r].stopped;
+      if (results[r].substation < results[best_run].substation) best_run = r;
+    }
+    if (plan.polish_every_run) {
+      for (const auto& r : results) candidates.push_back(r.departures);
+    } else {
+      candidates.push_back(results[best_run].departures);
+    }
+    // Candidates side by side, each stage's balance on one thread; one candidate: its balance
+    // on every thread. The best wins (ties: the first), whichever thread ran what.
+    const int n_candidates = static_cast<int>(candidates.size());
+    const int balance_threads = n_candidates == 1 ? threads : 1;
+    std::vector<MicroJoules> polished(n_candidates, 0);
+    std::vector<long> polish_moves(n_candidates, 0);
+    std::vector<char> stopped(n_candidates, 0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (n_candidates > 1)
+    for (int c = 0; c < n_candidates; ++c) {
+      bool stop = false;
+      for (std::size_t i = 0; i < plan.polish.size(); ++i) {
+        const SearchPlan::Polish& stage = plan.polish[i];
+        const FleetEnergyModel& grid = grids[i] ? *grids[i] : model;
+        if (stop || (stage.skip_on_search_grid &&
+                     grid.options().ticks_per_second() == coarse->options().ticks_per_second()))
+          continue;
+        const int window = stage.window_s < 0 ? options.polish_window_s
+                                              : std::min(stage.window_s, options.polish_window_s);
+        const std::unique_ptr<FleetBalance> balance = grid.make_balance(balance_threads);
+        polish_moves[c] +=
+            polish(*balance, p, candidates[c], window, stage.sweeps, t0, search_limit, &stop);
+        polished[c] = balance->substation();
+      }
+      stopped[c] = stop;
+    }
+    std::size_t best_c = 0;
+    for (int c = 0; c < n_candidates; ++c) {
+      s.moves += polish_moves[c];
+      out.stopped |= stopped[c] != 0;
+      if (polished[c] < polished[best_c]) best_c = c;
+    }
+    out.best = candidates[best_c];
+    out.substation = polished[best_c];
+    return out;
+  };
 
-  const energy::FleetLowerBound bound = model.lower_bound();
-  out.headways_s = headways_from_departures(best);
-  out.evaluation = model.evaluate(best);
-  s.method = "annealing (" + std::to_string(runs) + " runs) and polish" + plan.method_note +
+  // Round 0: every start, restarts times, the model's share of the time limit for annealing.
+  const int per_start =
+      plan.run_without_restarts ? std::max(1, options.restarts) : options.restarts;
+  const long moves = options.restarts == 0 ? 0 : options.moves_per_run;
+  int runs = static_cast<int>(starts.size()) * per_start;
+  std::vector<std::vector<int>> start_of;
+  std::vector<std::uint64_t> run_id;
+  std::vector<double> temperature;
+  for (int r = 0; r < std::max<int>(runs, starts.size()); ++r) {  // runs 0: the starts polished
+    start_of.push_back(starts[r % starts.size()]);
+    temperature.push_back(start_temperature[r % starts.size()]);
+    run_id.push_back(r);
+  }
+  Round best = search_round(start_of, run_id, temperature, runs == 0 ? 0 : moves,
+                            plan.anneal_share_of_time_limit * search_limit);
+  s.time_limit_reached = best.stopped;
+  // A start priced on the model's grid better than every polished run stays the result.
+  if (plan.price_starts && best_start_substation < best.substation)
+    best.best = starts[best_start], best.substation = best_start_substation;
+  // Progress in used energy where the starts were priced (else 0, as before any result).
+  const auto used_of = [&](MicroJoules substation) {
+    return std::isfinite(traction_J) ? traction_J - to_joules(substation) : 0.0;
+  };
+  report("round 0", used_of(best.substation), bound_used);
+
+  // Anytime rounds: while time remains (with a limit) or for options.rounds rounds (without),
+  // two runs a round: one re-anneals the best so far from a lower temperature, one anneals a
+  // start afresh with new draws. A round a limit cuts short is dropped, so a run with more time
+  // continues the run with less exactly (the same rounds in the same order, then more) and its
+  // result is never worse.
+  for (int round = 1; !best.stopped && runs > 0; ++round) {
+    if (options.time_limit_s > 0.0 ? past(t0, search_limit) : round > options.rounds) break;
+    const std::size_t fresh = round % starts.size();
+    const std::vector<std::vector<int>> from = {best.best, starts[fresh]};
+    const std::vector<std::uint64_t> ids = {1000003ULL * round, 1000003ULL * round + 1};
+    const Round r =
+        search_round(from, ids, {options.reanneal_temperature, start_temperature[fresh]},
+                     std::max<long>(1, moves / 2), search_limit);
+    if (r.stopped) {
+      s.time_limit_reached = true;
+      break;
+    }
+    ++s.rounds;
+    if (r.substation < best.substation) best.best = r.best, best.substation = r.substation;
+    report("round " + std::to_string(round), used_of(best.substation), bound_used);
+  }
+
+  out.headways_s = headways_from_departures(best.best);
+  out.evaluation = model.evaluate(best.best);
+  s.method = method_starts + "annealing (" + std::to_string(runs) + " runs, " +
+             std::to_string(s.rounds) + " further rounds) and polish" + plan.method_note +
              (bound.name.empty() ? "" : ", " + bound.name);
   s.used_regen_J = out.evaluation.used_regen_J();
   s.substation_J = out.evaluation.total.substation_J();
@@ -429,7 +401,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   s.curtailed_traction_J =
       out.evaluation.network ? out.evaluation.network->curtailed_traction_J : 0.0;
   s.gap_fraction = bound.exists() ? model.gap_fraction(out.evaluation, bound) : NAN;
-  s.pair_sum_J = model.pair_sum_J(best);
+  s.pair_sum_J = model.pair_sum_J(best.best);
   settle_termination(s, options.gap_fraction,
                      out.evaluation.network && out.evaluation.network->unsolved_instants > 0);
   s.wall_s = seconds_since(t0);

@@ -56,6 +56,15 @@ struct HeadwayOptimiserOptions {
   // CONVERGENCE only when (bound - result) / substation energy is at most this.
   double gap_fraction = 1e-4;
   int threads = 0;  // 0: OpenMP's default
+  // Anytime rounds after the first (two runs each: the best so far re-annealed from
+  // reanneal_temperature times the start temperature, and a start annealed with new draws):
+  // with a time limit as many as fit (a round the limit cuts short is dropped), else `rounds`.
+  int rounds = 0;
+  double reanneal_temperature = 0.1;
+  // With peak windows, a start from the trip's periodic regimes (regime_start.hpp).
+  bool regime_start = true;
+  // With peak windows the annealing also shifts blocks of consecutive trains (classes kept).
+  bool block_moves = true;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
@@ -79,6 +88,7 @@ struct HeadwayOptimiserSummary {
   double pair_sum_J = 0.0;
   long moves = 0;
   long dp_states = 0;
+  int rounds = 0;  // anytime rounds completed after the first
   double wall_s = 0.0;
   bool time_limit_reached = false;
   std::string message;

@@ -203,8 +203,19 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
       options.progress({stage, accepted, evaluated, substation_J, seconds_since(start_time)});
   };
 
+  // The whole-run limit: each stage ends by its share of it (0: none).
+  const double limit = options.time_limit_s;
+  const auto stage_options = [&](double share) {
+    HeadwayOptimiserOptions o = options.headways;
+    if (limit > 0.0) o.time_limit_s = std::max(1e-6, share * limit - seconds_since(start_time));
+    return o;
+  };
+  const auto out_of_time = [&](double share) {
+    return limit > 0.0 && seconds_since(start_time) > share * limit;
+  };
+
   // 1. Headways for the start pattern.
-  HeadwayOptimiserResult first = optimise_headways(*start_model, problem, options.headways);
+  HeadwayOptimiserResult first = optimise_headways(*start_model, problem, stage_options(1.0 / 3.0));
   out.headways_only = first.evaluation;
   const std::vector<int> departures = first.evaluation.departures_s;
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
@@ -221,17 +232,12 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   std::vector<double> min_time(n);
   for (std::size_t i = 0; i < n; ++i) min_time[i] = library.min_time_s(i) + 0.5;
   const std::vector<PatternMove> moves = pattern_moves(static_cast<int>(n));
-  // The limit is of each stage (PatternSearchOptions): the headways before took their own.
-  const SearchClock::time_point pattern_start = SearchClock::now();
-  const auto out_of_time = [&] {
-    return options.time_limit_s > 0.0 && seconds_since(pattern_start) > options.time_limit_s;
-  };
   for (double delta : options.deltas_s) {
     bool improved = true;
     while (improved && out.moves_accepted < options.max_moves && !out.time_limit_reached) {
       improved = false;
       for (const PatternMove& m : moves) {
-        if ((out.time_limit_reached = out_of_time())) break;
+        if ((out.time_limit_reached = out_of_time(2.0 / 3.0))) break;
         const std::optional<FleetPattern> p = moved(best, m, delta, problem, min_time);
         if (!p) continue;
         ++out.patterns_evaluated;
@@ -264,8 +270,10 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
     out.pattern.trip = cache.trip(best);
     const std::unique_ptr<energy::FleetEnergyModel> models =
         start_model->with_trip(out.pattern.trip);
-    out.timetable = optimise_headways(*models, problem, options.headways);
+    // The kept departures are priced first: the limit then covers the search alone.
     const FleetEvaluation kept = models->evaluate(departures);
+    out.timetable = optimise_headways(*models, problem,
+                                      stage_options(options.per_train_patterns ? 5.0 / 6.0 : 1.0));
     if (kept.total.substation_J() < out.timetable.evaluation.total.substation_J()) {
       HeadwayOptimiserSummary& s = out.timetable.summary;
       out.timetable.evaluation = kept;
@@ -291,10 +299,7 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
 
   // 4. Per-train patterns at the final departures: each train in turn, every move of its own
   // pattern priced against the rest of the fleet in parallel, the best improving one taken.
-  const SearchClock::time_point per_train_start = SearchClock::now();
-  const auto per_train_out_of_time = [&] {
-    return options.time_limit_s > 0.0 && seconds_since(per_train_start) > options.time_limit_s;
-  };
+  const auto per_train_out_of_time = [&] { return out_of_time(1.0); };
   out.time_limit_reached = false;
   out.move_limit_reached = false;
   const std::unique_ptr<energy::FleetEnergyModel> final_model =
@@ -314,9 +319,12 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
         std::vector<FleetPattern> candidates;
         const FleetPattern current = snapped(out.per_train[k]);
         for (const PatternMove& m : moves) {
+          // Each new candidate may be a section re-solve: the limit is checked between them.
+          if ((out.time_limit_reached = per_train_out_of_time())) break;
           const std::optional<FleetPattern> p = moved(current, m, delta, problem, min_time);
           if (p && cache.fetch(*p)) candidates.push_back(*p);
         }
+        if (out.time_limit_reached) break;
         const int count = static_cast<int>(candidates.size());
         out.per_train_candidates += count;
         std::vector<energy::MicroJoules> change(count, 0);

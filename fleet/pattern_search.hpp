@@ -45,8 +45,12 @@ struct PatternSearchOptions {
   int max_moves = 200;              // accepted moves of the one-pattern stage at most
   int max_per_train_moves = 5000;   // accepted moves of the per-train stage at most
   bool per_train_patterns = false;  // power-flow and sections models only
-  double time_limit_s = 0.0;        // of each pattern stage; 0: none
-  int threads = 0;                  // pricing per-train moves; 0: OpenMP's default
+  // Of the whole search, every stage and the final evaluations included; 0: none. The first
+  // headway search may take a third of it and the pattern moves until two thirds, the headways
+  // for the pattern found (and the per-train stage) the rest; the headway stages' own
+  // headways.time_limit_s is then ignored.
+  double time_limit_s = 0.0;
+  int threads = 0;  // pricing per-train moves; 0: OpenMP's default
   std::function<void(const PatternProgress&)> progress;
   bool IsValid(std::string* error) const;
 };

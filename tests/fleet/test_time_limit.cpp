@@ -1,9 +1,11 @@
-// A time limit is one for the whole headway search, polish included, and a search it stops is
-// NO_CONVERGENCE with its gap stated, never CONVERGENCE.
+// A time limit is one for the whole headway search (polish included) and for the whole pattern
+// search (every stage), and a search it stops is NO_CONVERGENCE with its gap stated, never
+// CONVERGENCE.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "fleet/search_support.hpp"
 #include "fleet_fixture.hpp"
 
 namespace ecorail::fleet {
@@ -48,6 +50,43 @@ TEST(HeadwayOptimiserTimeLimit, ConvergenceOnlyWithinTheGapTolerance) {
   const HeadwayOptimiserResult wide = optimise_headways(fleet, opt);
   EXPECT_EQ(wide.headways_s, tight.headways_s);
   EXPECT_EQ(wide.summary.termination, Termination::CONVERGENCE);
+}
+
+}  // namespace
+}  // namespace ecorail::fleet
+
+namespace ecorail::fleet {
+namespace {
+
+// The pattern search keeps one limit for the whole run: the headways for the start pattern,
+// the pattern moves, the headways for the pattern found and the per-train stage together,
+// with budgets that would take minutes. What no limit can cut short (each headway stage's bound,
+// starts and final account) is measured in the same run by the same search with a limit of a
+// millisecond, so the margin follows the machine's load; 1 s more covers one pattern move (a
+// section re-solve) begun just before the limit.
+TEST(PatternSearchTimeLimit, WholeRunKeepsTheLimit) {
+  FleetProblem problem = testing::small_fleet(12, 60, 200, 11 * 110);
+  problem.trip_time_s = 480.0;  // the small pattern's trip
+  EnergyModelOptions model;
+  model.time_step_s = 0.1;
+  PatternSearchOptions o;
+  o.headways.moves_per_run = 50000000;  // minutes of annealing without the limit
+  o.per_train_patterns = true;
+  const auto& lib = testing::small_library();
+  const PatternTrip& start = testing::small_pattern();
+  o.time_limit_s = 1e-3;
+  auto t0 = SearchClock::now();
+  optimise_pattern(lib, problem, model, start, o);
+  const double fixed = seconds_since(t0);
+  o.time_limit_s = 3.0;
+  t0 = SearchClock::now();
+  const PatternSearchResult r = optimise_pattern(lib, problem, model, start, o);
+  const double wall = seconds_since(t0);
+  RecordProperty("wall_s", std::to_string(wall));
+  RecordProperty("fixed_s", std::to_string(fixed));
+  EXPECT_LE(wall, o.time_limit_s + fixed + 1.0) << "fixed costs " << fixed << " s";
+  EXPECT_NE(r.timetable.summary.termination, Termination::CONVERGENCE);
+  EXPECT_EQ(departures_problem(problem, r.timetable.evaluation.departures_s), "");
 }
 
 }  // namespace

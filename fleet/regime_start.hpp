@@ -1,0 +1,47 @@
+// A start for the headway search built from the trip's periodic regimes
+// (fleet/periodic_regimes.hpp): every headway class (peak, off-peak) is analysed on a coarse
+// grid and its best regimes refined to whole seconds (resonances are sharper than the grid);
+// then a DP over (headways so far, clock time) fills the span with blocks:
+// single headways valued by their constant regime, and alternating pairs of the best resonant
+// regimes of each class (those worth more than their two constants side by side) valued by their
+// pair regime. Peak windows are thus filled with as many trains as their best peak regime makes
+// worth, and each off-peak stretch with the mixture of regimes that fits its length and count
+// best. Junctions between regimes are not priced (the annealing and polish that follow are).
+#pragma once
+
+#include <vector>
+
+#include "energy/fleet_energy_model.hpp"
+#include "fleet/fleet_problem.hpp"
+#include "fleet/periodic_regimes.hpp"
+
+namespace ecorail::fleet {
+
+struct RegimeStart {
+  std::vector<int> departures_s;              // empty when no timetable exists on the grid
+  int grid_s = 0;                             // the grid of the analysis and the DP (0: none fits)
+  std::vector<PeriodicRegime> offpeak, peak;  // the analyses (peak empty without windows)
+  double predicted_used_J = 0.0;              // the DP's value (junctions not priced)
+};
+
+// The coarsest grid of {10, 5} s that divides the span and every window edge, 0 when none does.
+int regime_grid_s(const FleetProblem& problem);
+
+// The DP alone, on given analyses (sorted as analyse_periodic_regimes returns them); at most
+// `pairs_per_class` alternating pairs of each class become blocks.
+RegimeStart regime_start_from(const FleetProblem& problem, int grid_s,
+                              std::vector<PeriodicRegime> offpeak, std::vector<PeriodicRegime> peak,
+                              int pairs_per_class = 16);
+
+// The `top` best regimes (by used energy per headway) each refined by hill climbing over whole
+// seconds within [lo_s, hi_s], added to the list with the constants of each refined pair.
+std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model,
+                                           std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
+                                           int top, int threads);
+
+// Analyses on the grid, the best regimes refined to whole seconds, and the DP by whole seconds;
+// the model is the one the search anneals on.
+RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& problem,
+                               int threads);
+
+}  // namespace ecorail::fleet

@@ -1,0 +1,101 @@
+// The periodic-regime analysis (fleet/periodic_regimes.hpp) against direct evaluation of long
+// periodic timetables: a regime's steady value per period must be the growth of the used energy
+// per period inserted, and the regime start must be a timetable of the problem whose DP value
+// the blocks it is made of add up to.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fleet/periodic_regimes.hpp"
+#include "fleet/regime_start.hpp"
+#include "fleet_fixture.hpp"
+
+namespace ecorail::fleet {
+namespace {
+
+TestFleet small_model(double step_s) {
+  EnergyModelOptions o;
+  o.time_step_s = step_s;
+  return TestFleet(testing::small_pattern().trip, testing::small_fleet(10, 60, 200, 9 * 120), o);
+}
+
+// Long timetables of P + 1 and P + 7 periods, evaluated whole: their difference is six periods
+// of the steady regime, for constants and alternating pairs, resonant or not.
+TEST(PeriodicRegimes, SteadyValueIsTheGrowthOfLongTimetables) {
+  const TestFleet fleet = small_model(1.0);
+  const energy::FleetEnergyModel& m = fleet.model();
+  int positive = 0;
+  for (auto [a, b] : {std::pair{60, 60}, {90, 90}, {70, 110}, {100, 140}, {150, 200}, {63, 97}}) {
+    const double per_period = steady_used_per_period_J(m, a, b);
+    const int p = base_periods(m, a, b) + 1;
+    const double growth =
+        periodic_timetable_used_J(m, a, b, p + 6) - periodic_timetable_used_J(m, a, b, p);
+    EXPECT_NEAR(6.0 * per_period, growth, 1e-6 * std::fabs(growth) + 1.0) << a << "/" << b;
+    positive += per_period > 0.0;
+  }
+  EXPECT_GT(positive, 0);  // some regime uses regenerated energy at all
+}
+
+// The analysis lists every grid pair within the spread, each valued as above.
+TEST(PeriodicRegimes, AnalysisListsTheGridAndItsValues) {
+  const TestFleet fleet = small_model(1.0);
+  PeriodicRegimeOptions o;
+  o.lo_s = 60;
+  o.hi_s = 100;
+  o.grid_s = 20;
+  o.max_spread_s = 20;
+  const std::vector<PeriodicRegime> r = analyse_periodic_regimes(fleet.model(), o);
+  ASSERT_EQ(r.size(), 5u);  // 60/60 60/80 80/80 80/100 100/100
+  EXPECT_EQ(r[1].a_s, 60);
+  EXPECT_EQ(r[1].b_s, 80);
+  for (const PeriodicRegime& g : r)
+    EXPECT_DOUBLE_EQ(g.used_per_period_J, steady_used_per_period_J(fleet.model(), g.a_s, g.b_s));
+}
+
+// Refinement to whole seconds: the best regime (a hill climb from the grid's best) is a local
+// maximum: no one-second step of it, independently priced, is better.
+TEST(PeriodicRegimes, RefinedRegimesAreLocalMaxima) {
+  const TestFleet fleet = small_model(1.0);
+  const energy::FleetEnergyModel& m = fleet.model();
+  PeriodicRegimeOptions o;
+  o.lo_s = 60;
+  o.hi_s = 140;
+  o.grid_s = 20;
+  o.max_spread_s = 40;
+  const std::vector<PeriodicRegime> grid = analyse_periodic_regimes(m, o);
+  const std::vector<PeriodicRegime> refined = refine_regimes(m, grid, o.lo_s, o.hi_s, 2, 2);
+  ASSERT_GT(refined.size(), grid.size());
+  double best = refined.front().used_per_period_J;
+  const PeriodicRegime* top = &refined.front();
+  for (const PeriodicRegime& r : refined)
+    if (r.used_per_period_J > best) best = r.used_per_period_J, top = &r;
+  for (auto [da, db] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}}) {
+    const int a = top->a_s + da, b = top->b_s + db;
+    if (a < o.lo_s || b > o.hi_s || a > b || (top->a_s == top->b_s && da != db)) continue;
+    EXPECT_LE(steady_used_per_period_J(m, a, b), top->used_per_period_J) << a << "/" << b;
+  }
+}
+
+// The regime DP on hand-made values: a resonant pair worth more than its constants is used to
+// fill the span, and the result keeps the problem's rules and adds up to the DP's value.
+TEST(RegimeStart, FillsTheSpanWithTheBestBlocks) {
+  const FleetProblem p = testing::small_fleet(9, 100, 200, 4 * 130 + 4 * 150);
+  std::vector<PeriodicRegime> off;
+  for (int a = 100; a <= 200; a += 10)
+    for (int b = a; b <= 200 && b - a <= 60; b += 10) {
+      const double v =
+          (a == 130 && b == 150) ? 300.0 : (a == b ? 2.0 * (a == 140 ? 120.0 : 100.0) : 150.0);
+      off.push_back({a, b, v});
+    }
+  const RegimeStart r = regime_start_from(p, 10, off, {});
+  ASSERT_FALSE(r.departures_s.empty());
+  EXPECT_EQ(departures_problem(p, r.departures_s), "");
+  const std::vector<int> h = headways_from_departures(r.departures_s);
+  int resonant = 0;
+  for (int x : h) resonant += x == 130 || x == 150;
+  EXPECT_EQ(resonant, 8);  // four 130/150 pairs, 150 J a headway, beat 140 s at 120 J
+  EXPECT_DOUBLE_EQ(r.predicted_used_J, 4 * 300.0);
+}
+
+}  // namespace
+}  // namespace ecorail::fleet
