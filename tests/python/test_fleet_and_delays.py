@@ -155,10 +155,21 @@ def test_optimise_gap_matches_cli(reference, run_cli):
     # A search stopped by its budget is a result (as Ceres' NO_CONVERGENCE): usable.
     assert strict.summary.is_solution_usable
     assert strict.to_dict()["summary"]["gap_fraction_of_substation"] > 1e-4
-    # A Fleet's study, rebuilt for another problem, gives the free function's document.
+    # A Fleet's study, taken for another problem, gives the free function's document.
     other = fleet.evaluate(trains=20, span_s=6000, headway_s=(120, 660))
     alone = ecorail.timetable.evaluate(line, train, trains=20, span_s=6000)
     assert other.to_dict() == alone.to_dict()
+    # The pattern search (a short one): never worse than the headways alone, a result when
+    # stopped by its time limit, and the Fleet keeps its own pattern.
+    found = fleet.optimise(trains=12, span_s=6000, moves=2000, restarts=1, time_limit_s=2,
+                           pattern=True)
+    assert found.summary.is_solution_usable
+    search = found.to_dict()["pattern_search"]
+    assert found.substation_energy_kJ <= search["headways_only_substation_energy_kJ"] + 1e-6
+    assert fleet.evaluate(trains=20, span_s=6000).to_dict() == alone.to_dict()
+    with pytest.raises(ValueError, match="per_train_patterns"):
+        ecorail.timetable.optimise(line, train, model="overlap", trains=12, span_s=6000,
+                                   per_train_patterns=True)  # refused before any work
 
 
 def test_delay_and_montecarlo_on_a_plan_csv(reference, run_cli, cache_dir, tmp_path,
