@@ -52,10 +52,6 @@ struct DelayArgs {
   std::string json, csv, svg;
 };
 
-[[noreturn]] void bad(const std::string& flag, const std::string& expected) {
-  throw data::InputError("command line", 0, flag, expected);
-}
-
 void print_report(std::FILE* out, const recovery::DelayRecoveryResult& r, bool full) {
   const auto& sm = r.summary;
   std::fputs((full ? sm.FullReport() : sm.BriefReport() + warnings_text(sm.warnings)).c_str(), out);
@@ -119,7 +115,8 @@ void run_delay(const DelayArgs& a) {
   require_valid(options);
   const Problem p = load_fleet_problem(a.problem, "--train-file");
   // The plan first: a bad file fails before any engine is built.
-  PlanStops ps = read_plan_stops(p.line, a.reference, a.plan_file);
+  recovery::PlanStops ps =
+      recovery::read_plan_stops(p.line, a.reference ? std::string() : a.plan_file);
   recovery::Plan& plan = ps.plan;
   const std::vector<std::string>& stops = ps.stops;
   const auto it = std::find(stops.begin(), stops.end(), a.station);
@@ -132,23 +129,17 @@ void run_delay(const DelayArgs& a) {
   const std::unique_ptr<dp::SectionLibrary> lib =
       plan_library(p, a.problem, stops, a.frontier_span_s);
   const dp::SectionLibrary& library = *lib;
-  if (a.reference) plan = reference_plan_on(library, stops);
+  if (a.reference) plan = recovery::reference_plan_on(library, stops);
   if (static_cast<std::size_t>(a.train) > plan.trains.size())
     bad("--train", "a train from 1 to " + std::to_string(plan.trains.size()) + "; got " +
                        std::to_string(a.train));
   StageProgress progress("ecorail delay", a.quiet);
   options.progress = progress.callback();
   output::FileFrontierStore store(cache_directory(a.cache_dir));
-  recovery::DelayRecoveryResult r;
-  try {
-    r = recovery::recover_delay(library, plan, static_cast<std::size_t>(a.train - 1), station,
-                                a.delay_s, options, a.no_cache ? nullptr : &store);
-  } catch (const recovery::DelayInputError& e) {
-    const std::string& f = e.field();
-    throw data::InputError(f == "plan" && !a.reference ? a.plan_file : "command line", 0,
-                           f == "plan" ? (a.reference ? "--reference" : "--plan") : "--" + f,
-                           e.what());
-  }
+  if (!a.reference) options.plan_file = a.plan_file;
+  const recovery::DelayRecoveryResult r =
+      recovery::recover_delay(library, plan, static_cast<std::size_t>(a.train - 1), station,
+                              a.delay_s, options, a.no_cache ? nullptr : &store);
   OutputOptions streams;
   streams.json = a.json;
   streams.csv = a.csv;

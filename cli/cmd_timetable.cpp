@@ -169,7 +169,10 @@ void run_optimise(const TimetableArgs& a) {
       std::fflush(stderr);
     };
   }
-  const fleet::StudyOptimisation r = s.optimise(so);  // throws before anything is printed
+  const fleet::StudyOptimisation r = s.optimise(so);
+  // A timetable the model found no solution for is never a result: nothing is printed.
+  if (!r.result.summary.IsSolutionUsable())
+    throw std::runtime_error("the optimiser failed: " + r.result.summary.message);
   if (o.progress) std::fprintf(stderr, "\n");
   if (r.pattern_search) {
     print_energy(r.pattern_search->headways_only, "headways alone, default pattern");

@@ -10,6 +10,7 @@
 #include "data/input_error.hpp"
 #include "dp/time_target.hpp"
 #include "policy/ladder.hpp"
+#include "recovery/delay_recovery.hpp"
 
 namespace ecorail::cli {
 
@@ -91,6 +92,15 @@ const char* flag_of(const Error& e) {
 int report(const Error& e) {
   const auto* std_error = dynamic_cast<const std::exception*>(&e);
   const std::string what = std_error ? std_error->what() : std::string(error_kind_name(e.kind()));
+  if (const auto* delay = dynamic_cast<const recovery::DelayInputError*>(&e)) {
+    // The argument of `delay` it names: the plan (its file, or the reference plan) or a flag.
+    const std::string& field = delay->field();
+    const bool file = field == "plan" && !delay->context().file.empty();
+    return fail(2, data::InputError(
+                       file ? delay->context().file : "command line", 0,
+                       field == "plan" ? (file ? "--plan" : "--reference") : "--" + field, what)
+                       .what());
+  }
   switch (e.kind()) {
     case ErrorKind::kBadInput:
     case ErrorKind::kPolicyFormat:  // names the file it read
@@ -113,6 +123,10 @@ int report(const Error& e) {
 }
 
 }  // namespace
+
+void bad(const std::string& flag, const std::string& expected) {
+  throw data::InputError("command line", 0, flag, expected);
+}
 
 void throw_on_flag(const std::string& why, std::initializer_list<FieldFlag> flags) {
   for (const FieldFlag& f : flags) {

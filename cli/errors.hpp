@@ -25,6 +25,10 @@ class InvalidOptionsError : public std::invalid_argument, public Error {
 // --min-regime-s, --split); InvalidOptionsError with the message otherwise.
 [[noreturn]] void throw_on_known_flag(const std::string& why);
 
+// A flag's value refused before any work: "command line: field '<flag>': expected <expected>"
+// (exit 2).
+[[noreturn]] void bad(const std::string& flag, const std::string& expected);
+
 // Checks a library options struct before any work (exit 2): a field a flag of the program sets
 // is reported on that flag (throw_on_known_flag), any other as its message says.
 template <typename Options>

@@ -1,8 +1,7 @@
-// Reading a timetable plan for the delay commands (`ecorail delay`, `ecorail montecarlo`): the
-// timetable CSV that `ecorail timetable evaluate|optimise --csv` writes (columns train,
-// station, arrival_s, departure_s; others ignored), rows grouped by train, stations in the order
-// of their rows; or the 2.1 reference plan. Bad files are data::InputError naming file, row and
-// field.
+// The flags and the progress line the delay commands (`ecorail delay`, `ecorail montecarlo`)
+// share: where the plan comes from (--plan, a timetable CSV read by recovery/plan_source.hpp, or
+// --reference), the engine and frontier-cache flags, and the section library of the problem
+// options.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -14,36 +13,16 @@
 
 #include "cli/problem_options.hpp"
 #include "cli/progress_line.hpp"
-#include "data/line.hpp"
 #include "dp/section_library.hpp"
-#include "recovery/plan.hpp"
+#include "recovery/plan_source.hpp"
 
 namespace ecorail::cli {
 
-recovery::Plan read_plan(const std::string& file);
-// InputError unless the plan's stations are every station of the line between its first and
-// last, in the order of travel.
-void check_plan_stations(const data::Line& line, const recovery::Plan& plan,
-                         const std::string& file);
-
-// What a delay command runs on: the plan and its stations. From plan_file (read and checked
-// against the line, so a bad file fails before any engine is built), or with reference the
-// line's stations, the plan itself made on the library afterwards (reference_plan_on).
-struct PlanStops {
-  recovery::Plan plan;
-  std::vector<std::string> stops;
-};
-PlanStops read_plan_stops(const data::Line& line, bool reference, const std::string& plan_file);
-
 // The section library of the plan's stations for the delay commands: the grid of the problem
-// options, frontiers frontier_span_s long, keyed for the frontier cache by line, train and
-// curve formula (the same key for `delay` and `montecarlo`, so they share cached frontiers).
+// options, frontiers frontier_span_s long (recovery::plan_section_library).
 std::unique_ptr<dp::SectionLibrary> plan_library(const Problem& p, const ProblemOptions& o,
                                                  const std::vector<std::string>& stops,
                                                  double frontier_span_s);
-// The 2.1 reference plan made on that library (docs/delays.md).
-recovery::Plan reference_plan_on(const dp::SectionLibrary& library,
-                                 const std::vector<std::string>& stops);
 // The flags the delay commands share: --plan / --reference (where the plan comes from), and the
 // line, train file, grid, threads, frontier span and frontier cache (--frontier-span, --line,
 // --train-file, --ds, --dv, --threads, --cache-dir, --no-cache).

@@ -7,7 +7,9 @@
 #include "cli/output_options.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "output/separation_json.hpp"
 #include "output/service_profiles.hpp"
+#include "service/pattern_service.hpp"
 #include "service/profiles.hpp"
 #include "service/service_simulator.hpp"
 
@@ -22,34 +24,20 @@ struct ServiceRun {
 
 namespace {
 
-[[noreturn]] void bad(const std::string& flag, const std::string& expected) {
-  throw data::InputError("command line", 0, flag, expected);
-}
-
 service::ServiceOptions service_options(const ServiceArgs& a) {
   service::ServiceOptions o;
   o.separation.train_length_m = a.train_length_m;
   o.separation.safety_margin_m = a.safety_margin_m;
   o.separation.braking_m_s2 = a.braking_m_s2;
-  if (a.follower == "supervise")
-    o.mode = service::FollowerMode::Supervised;
-  else if (a.follower == "reoptimise")
-    o.mode = service::FollowerMode::Reoptimised;
-  else if (a.follower == "wait")
-    o.mode = service::FollowerMode::Wait;
-  else
-    bad("--follower", "supervise, reoptimise or wait; got '" + a.follower + "'");
+  const auto mode = service::follower_mode_from_name(a.follower);
+  if (!mode) bad("--follower", "supervise, reoptimise or wait; got '" + a.follower + "'");
+  o.mode = *mode;
   std::string why;
   if (!o.IsValid(&why))
     throw_on_flag(why, {{"train_length_m", "--train-length"},
                         {"safety_margin_m", "--safety-margin"},
                         {"braking_m_s2", "--braking"}});
   return o;
-}
-
-nlohmann::json stretch_json(int train, const service::CapStretch& c) {
-  return {{"train", train + 1}, {"from_s", c.from_s}, {"to_s", c.to_s},
-          {"from_m", c.from_m}, {"to_m", c.to_m},     {"worst_margin_kmh", c.worst_margin_kmh}};
 }
 
 }  // namespace
@@ -98,43 +86,23 @@ std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
   const service::ServiceOptions o = service_options(a);
   if (a.profile_train > static_cast<int>(departures_s.size()))
     bad("--profile-train", "a train of the timetable, 1 to " + std::to_string(departures_s.size()));
-  // The plan: each section's energy-optimal control for the pattern's running time.
-  std::vector<physics::ControlProgram> programs;
-  for (std::size_t i = 0; i < library.size(); ++i)
-    programs.push_back(library.solve(i, pattern.running_times_s[i]).search.run.program);
-  const service::ServicePlan plan =
-      service::plan_from_programs(library, std::move(programs), pattern.dwells_s);
   auto run = std::make_shared<ServiceRun>();
   const std::vector<double> departures(departures_s.begin(), departures_s.end());
-  run->result = service::simulate_service(library, plan, departures, o);
+  run->result = service::simulate_service(
+      library, service::plan_from_running_times(library, pattern.running_times_s, pattern.dwells_s),
+      departures, o);
   const service::ServiceResult& r = run->result;
   const service::ServiceSummary& sm = r.summary;
   std::printf("separation (b = %.4g m/s^2, train length %.0f m, margin %.0f m): %s\n",
               r.braking_m_s2, a.train_length_m, a.safety_margin_m, sm.BriefReport().c_str());
-  nlohmann::json binding = nlohmann::json::array();
   for (std::size_t k = 0; k < r.planned_binding.size(); ++k)
-    for (const auto& c : r.planned_binding[k]) {
-      binding.push_back(stretch_json(static_cast<int>(k), c));
+    for (const auto& c : r.planned_binding[k])
       std::printf("  cap binds: train %zu, %.0f-%.0f s, %.0f-%.0f m, worst margin %.2f km/h\n",
                   k + 1, c.from_s, c.to_s, c.from_m, c.to_m, c.worst_margin_kmh);
-    }
-  if (binding.empty()) std::printf("  the cap never binds at the planned timetable\n");
-  nlohmann::json events = nlohmann::json::array();
-  for (const auto& e : r.events) {
-    events.push_back({{"train", e.train + 1},
-                      {"section", e.section + 1},
-                      {"planned_energy_kJ", e.planned_cost_J / 1e3},
-                      {"supervised_energy_kJ", e.supervised_cost_J / 1e3},
-                      {"supervised_late_s", e.supervised_late_s},
-                      {"reoptimised_energy_kJ", std::isfinite(e.reoptimised_cost_J)
-                                                    ? nlohmann::json(e.reoptimised_cost_J / 1e3)
-                                                    : nlohmann::json()},
-                      {"reoptimised_late_s", e.reoptimised_late_s},
-                      {"reoptimised_wait_s", e.reoptimised_wait_s},
-                      {"report", e.report},
-                      {"station_wait_s", e.station_wait_s},
-                      {"driven", e.driven},
-                      {"late_s", e.late_s}});
+  energy["separation"] = output::separation_json(r, o);
+  if (!energy["separation"]["cap_binds_at_plan"].get<bool>())
+    std::printf("  the cap never binds at the planned timetable\n");
+  for (const auto& e : r.events)
     std::printf(
         "  train %d section %d: %s (waits %.2f s at the stop, arrives %.2f s late); planned %.1f "
         "kJ, braked by the cap %.1f kJ (%.2f s late)%s\n",
@@ -145,27 +113,6 @@ std::shared_ptr<ServiceRun> run_service_check(const ServiceArgs& a,
                data::format_number(e.reoptimised_late_s) + " s late)")
                   .c_str()
             : "");
-  }
-  double traction_J = 0.0;
-  for (const auto& t : r.trips) traction_J += t.ledger().traction_work_J;
-  energy["separation"] = {{"braking_m_s2", r.braking_m_s2},
-                          {"train_length_m", a.train_length_m},
-                          {"safety_margin_m", a.safety_margin_m},
-                          {"follower", a.follower},
-                          {"min_speed_margin_kmh", sm.min_speed_margin_kmh},
-                          {"min_distance_margin_m", sm.min_distance_margin_m},
-                          {"min_gap_m", sm.min_gap_m},
-                          {"min_margin_train", sm.min_margin_train + 1},
-                          {"min_margin_at_s", sm.min_margin_at_s},
-                          {"min_margin_at_m", sm.min_margin_at_m},
-                          {"cap_binds_at_plan", !binding.empty()},
-                          {"cap_exceeded", sm.cap_exceeded},
-                          {"trains_resimulated", sm.trains_resimulated},
-                          {"max_late_s", sm.max_late_s},
-                          {"service_traction_work_kJ", traction_J / 1e3},
-                          {"planned_binding", binding},
-                          {"events", events},
-                          {"brief_report", sm.BriefReport()}};
   if (sm.cap_exceeded)
     throw std::runtime_error("a simulated train exceeds the separation cap: " + sm.BriefReport());
   if (!a.profiles_csv.empty()) {

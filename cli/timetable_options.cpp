@@ -23,10 +23,6 @@ int whole_seconds(double v, const std::string& flag) {
 
 }  // namespace
 
-void bad(const std::string& flag, const std::string& expected) {
-  throw data::InputError("command line", 0, flag, expected);
-}
-
 std::pair<double, double> parse_range(const std::string& text, const std::string& flag) {
   const auto colon = text.find(':');
   if (colon == std::string::npos) bad(flag, "a range MIN:MAX; got '" + text + "'");

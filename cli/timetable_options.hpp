@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/errors.hpp"
 #include "cli/output_options.hpp"
 #include "cli/problem_options.hpp"
 #include "cli/service_options.hpp"
@@ -59,7 +60,6 @@ struct TimetableArgs {
   OutputOptions gtfs;                  // --gtfs DIR, --gtfs-start (its other fields unused)
 };
 
-[[noreturn]] void bad(const std::string& flag, const std::string& expected);
 // "A:B" as two numbers, A <= B.
 std::pair<double, double> parse_range(const std::string& text, const std::string& flag);
 fleet::FleetProblem fleet_problem(const TimetableArgs& a);

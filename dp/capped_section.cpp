@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "dp/lambda_bracket.hpp"
 #include "dp/objective.hpp"
 #include "dp/time_target.hpp"
 
@@ -235,8 +236,11 @@ CappedSectionResult solve_capped_section(const SectionEngine& engine, const phys
   auto total = [&](const physics::SimulationResult& sim) {
     return out.wait_s + sim.running_time_s;
   };
-  // Fits a program to the target arrival: the switch into the last coast moved by bisection on
-  // the re-simulated time (later coasting is faster). Returns whether the time is met.
+  // Fits a program to the target arrival: the switch into the last coast moved by the library's
+  // root search (LambdaBracket) on the sign of the re-simulated time error (later coasting is
+  // faster), so every step halves the bracket (it bisects when an end is infinite): a capped run's
+  // time jumps where the cap starts or stops binding, where regula falsi would gain nothing.
+  // Keeps the best run it met. Returns whether the time is met.
   auto fit = [&](physics::ControlProgram& program, physics::SimulationResult& sim) {
     sim = simulate_capped(engine, program, cap, start_clock_s + out.wait_s, o.resim_step_m);
     double best_err = std::fabs(total(sim) - target_s);
@@ -252,23 +256,25 @@ CappedSectionResult solve_capped_section(const SectionEngine& engine, const phys
     if (k < 1) return false;
     double lo = program[k - 1].from_m;
     double hi = k + 1 < static_cast<int>(program.size()) ? program[k + 1].from_m : length;
+    const double inf = std::numeric_limits<double>::infinity();
     physics::ControlProgram trial = program;
-    for (int it = 0; it < 30 && best_err > 0.5 * o.time_tolerance_s; ++it) {
-      trial[k].from_m = 0.5 * (lo + hi);
-      physics::SimulationResult t_sim =
-          simulate_capped(engine, trial, cap, start_clock_s + out.wait_s, o.resim_step_m);
-      ++sm.trim_iterations;
-      const double err = total(t_sim) - target_s;
-      if (run_arrives(t_sim) && std::fabs(err) < best_err) {
-        best_err = std::fabs(err);
-        sim = std::move(t_sim);
-        program = trial;
-      }
-      if (err > 0.0)
-        lo = trial[k].from_m;
-      else
-        hi = trial[k].from_m;
-    }
+    LambdaBracket bracket(
+        [&](double switch_m) {
+          trial[k].from_m = switch_m;
+          physics::SimulationResult t_sim =
+              simulate_capped(engine, trial, cap, start_clock_s + out.wait_s, o.resim_step_m);
+          ++sm.trim_iterations;
+          const double err = total(t_sim) - target_s;
+          if (run_arrives(t_sim) && std::fabs(err) < best_err) {
+            best_err = std::fabs(err);
+            sim = std::move(t_sim);
+            program = trial;
+          }
+          return err > 0.0 ? inf : -inf;  // too slow: the switch moves later
+        },
+        lo, inf, hi, -inf, 30);
+    // No least width: the budget of 30 runs and the tolerance end it.
+    bracket.narrow([&] { return best_err <= 0.5 * o.time_tolerance_s; }, -inf);
     return run_arrives(sim) && best_err <= o.time_tolerance_s;
   };
   auto usable = [&](const physics::SimulationResult& sim) {

@@ -51,7 +51,7 @@ TimetableStudy::TimetableStudy(const TimetableStudySetup& setup)
   model_options_.traction_efficiency = setup.train.traction_efficiency;
   dp::SectionLibraryOptions lib_options;
   lib_options.engine = setup.engine;
-  library_ = std::make_unique<dp::SectionLibrary>(
+  library_ = std::make_shared<dp::SectionLibrary>(
       setup.train, data::build_routes(setup.line, stops_, setup.train), lib_options);
   double pos = 0.0;
   positions_m_.push_back(0.0);
@@ -66,12 +66,37 @@ TimetableStudy::TimetableStudy(const TimetableStudySetup& setup)
   }
   why = run_problem(model_options_, run_length_m(), hi - lo, &field);
   if (!why.empty()) throw std::invalid_argument(field + ": " + why);
-  const std::vector<double> dwells(stops_.size() - 2, setup.dwell_s);
-  dp::JourneyOptions journey;
-  journey.engine = lib_options.engine;
-  journey.measure_marginals = false;
-  pattern_ = optimal_split_pattern(*library_, dwells, problem_.trip_time_s, journey);
+  dwell_s_ = setup.dwell_s;
+  journey_.engine = lib_options.engine;
+  journey_.measure_marginals = false;
+  make_pattern_and_model(nullptr);
+}
+
+void TimetableStudy::make_pattern_and_model(const TimetableStudy* start) {
+  if (start != nullptr && start->problem_.trip_time_s == problem_.trip_time_s) {
+    initial_pattern_ = start->initial_pattern_;
+  } else {
+    const std::vector<double> dwells(stops_.size() - 2, dwell_s_);
+    initial_pattern_ = optimal_split_pattern(*library_, dwells, problem_.trip_time_s, journey_);
+  }
+  pattern_ = initial_pattern_;
   model_ = make_model(pattern_.trip, problem_, model_options_);
+}
+
+std::unique_ptr<TimetableStudy> TimetableStudy::with_problem(const FleetProblem& problem) const {
+  std::string why;
+  if (!problem.IsValid(&why)) throw std::invalid_argument(why);
+  std::unique_ptr<TimetableStudy> s(new TimetableStudy());
+  s->problem_ = problem;
+  s->line_ = line_;
+  s->model_options_ = model_options_;
+  s->stops_ = stops_;
+  s->positions_m_ = positions_m_;
+  s->library_ = library_;
+  s->dwell_s_ = dwell_s_;
+  s->journey_ = journey_;
+  s->make_pattern_and_model(this);
+  return s;
 }
 
 StudyEvaluation TimetableStudy::evaluate(const std::vector<int>& departures_s) const {
@@ -111,9 +136,6 @@ StudyOptimisation TimetableStudy::optimise(const StudyOptimiseOptions& options) 
     out.result = r.timetable;
     out.pattern_search = std::move(r);
   }
-  // A timetable the model found no solution for is never a result.
-  if (!out.result.summary.IsSolutionUsable())
-    throw std::runtime_error("the optimiser failed: " + out.result.summary.message);
   return out;
 }
 

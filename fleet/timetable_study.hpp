@@ -6,8 +6,11 @@
 // a timetable's account (and, when the model reports it, the substation energy of the same day
 // without any reuse); optimise() runs the headway or the pattern search and keeps the pattern it
 // found. Plots' data (the power-flow trace, the substations' power, the load flow at an instant)
-// come from the model when it has them. A timetable the model found no solution for is an error
-// (std::runtime_error), never a result.
+// come from the model when it has them. with_problem() gives the study of another fleet problem
+// on the same run, sharing the section library (its solves and frontiers are not made again).
+// optimise() returns its search's summary whatever the termination: a FAILURE (no timetable the
+// model found a solution for) is flagged there, IsSolutionUsable() false, and is never a result
+// to write.
 #pragma once
 
 #include <memory>
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "data/line.hpp"
+#include "dp/journey.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/section_library.hpp"
 #include "energy/fleet_energy_model.hpp"
@@ -65,6 +69,12 @@ class TimetableStudy {
   // dp::InfeasibleTimeError when the trip time leaves less than the flat-out runs after the
   // dwells; std::invalid_argument for options that do not fit the run (RunProblem).
   explicit TimetableStudy(const TimetableStudySetup& setup);
+  // The study of problem on the same line, train, stops, dwell and model options: the section
+  // library is shared, the pattern is the optimal split for problem's trip time (the one this
+  // study started from when the trip time is the same; a pattern or per-train patterns found by
+  // optimise() are not carried over), the model is built for problem. Errors as the
+  // constructor's.
+  std::unique_ptr<TimetableStudy> with_problem(const FleetProblem& problem) const;
 
   const FleetProblem& problem() const { return problem_; }
   const energy::EnergyModelOptions& model_options() const { return model_options_; }
@@ -80,7 +90,9 @@ class TimetableStudy {
   const std::vector<physics::Trip>& per_train_trips() const { return per_train_trips_; }
 
   StudyEvaluation evaluate(const std::vector<int>& departures_s) const;
-  // Keeps the pattern (and per-train patterns) the search found for the outputs.
+  // Keeps the pattern (and per-train patterns) the search found for the outputs. The result's
+  // summary says how the search ended (std::invalid_argument only for options that are not
+  // valid).
   StudyOptimisation optimise(const StudyOptimiseOptions& options);
 
   // Plots' data over [from_s, to_s) of the clock. The power-flow trace needs a model with a
@@ -96,12 +108,20 @@ class TimetableStudy {
                                      std::vector<int>* trains) const;
 
  private:
+  TimetableStudy() = default;
+  // The pattern for problem_'s trip time (reused from start when it has that trip time) and the
+  // model for problem_.
+  void make_pattern_and_model(const TimetableStudy* start);
+
   FleetProblem problem_;
   data::Line line_;
   energy::EnergyModelOptions model_options_;
   std::vector<std::string> stops_;
   std::vector<double> positions_m_;
-  std::unique_ptr<dp::SectionLibrary> library_;
+  std::shared_ptr<dp::SectionLibrary> library_;  // shared with the studies of with_problem
+  double dwell_s_ = 30.0;
+  dp::JourneyOptions journey_;   // of the pattern's optimal split
+  PatternTrip initial_pattern_;  // the optimal split the study started from
   PatternTrip pattern_;
   std::vector<FleetPattern> per_train_patterns_;
   std::vector<physics::Trip> per_train_trips_;

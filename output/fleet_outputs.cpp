@@ -20,27 +20,16 @@ constexpr double kJ = 1e-3;
 
 }  // namespace
 
-std::string clock_text(double t_s) {
-  const long s = std::lround(t_s);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%02ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
-  return buf;
-}
-
 void write_timetable_csv(std::ostream& out, const FleetTimetable& tt) {
-  out << "train,station,position_m,arrival_s,departure_s,arrival,departure,dwell_s\n";
-  char buf[256];
+  std::vector<TimetableCsvRow> rows;
   for (std::size_t k = 0; k < tt.departures_s.size(); ++k) {
     const physics::Trip trip = tt.train_trip(k);
     const auto stops = trip.stops();
-    for (std::size_t j = 0; j < stops.size(); ++j) {
-      std::snprintf(buf, sizeof buf, "%zu,%s,%.1f,%.3f,%.3f,%s,%s,%.3f\n", k + 1,
-                    tt.stations.at(j).c_str(), stops[j].position_m, stops[j].arrival_s,
-                    stops[j].departure_s, clock_text(stops[j].arrival_s).c_str(),
-                    clock_text(stops[j].departure_s).c_str(), stops[j].dwell_s);
-      out << buf;
-    }
+    for (std::size_t j = 0; j < stops.size(); ++j)
+      rows.push_back({k + 1, tt.stations.at(j), stops[j].position_m, stops[j].arrival_s,
+                      stops[j].departure_s, stops[j].dwell_s});
   }
+  write_timetable_csv(out, rows);
 }
 
 void write_timetable_xlsx(const std::filesystem::path& file, const FleetTimetable& tt,

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "dp/lambda_bracket.hpp"
+
 namespace ecorail::recovery {
 
 namespace {
@@ -17,21 +19,27 @@ double sum_of(const std::vector<double>& v) {
 }
 
 // The running time at which a section's marginal energy per second equals lambda, within its
-// bounds: bisection on the curve's marginal, which is continuous and non-increasing on a convex
-// frontier (FrontierCurve::marginal_at; its time_for_marginal minimises over the whole curve,
-// not within the bounds, see docs/delays.md).
+// bounds: the library's root search (dp::LambdaBracket) on the sign of the curve's marginal less
+// lambda, which is continuous and non-increasing on a convex frontier (FrontierCurve::marginal_at;
+// its time_for_marginal minimises over the whole curve, not within the bounds, see
+// docs/delays.md). On the sign only (+-infinity), every step halves the bracket (LambdaBracket
+// bisects when an end is infinite): the time is found to 1e-10 s in at most about 40 steps
+// whatever the kinks of the marginal, where the frontier's linear pieces join.
 double time_at_price(const AllocationItem& it, double lambda) {
-  double a = it.lower_s, b = it.upper_s;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double a = it.lower_s, b = it.upper_s;
   if (!(lambda < it.curve->marginal_at(a))) return a;
   if (lambda <= it.curve->marginal_at(b)) return b;
-  for (int i = 0; i < 200 && b - a > 1e-10; ++i) {
-    const double mid = 0.5 * (a + b);
-    if (it.curve->marginal_at(mid) > lambda)
-      a = mid;
-    else
-      b = mid;
-  }
-  return 0.5 * (a + b);
+  double lo = a, hi = b;  // marginal above lambda at lo, at or below it at hi
+  dp::LambdaBracket bracket(
+      [&](double t) {
+        const bool above = it.curve->marginal_at(t) > lambda;
+        (above ? lo : hi) = t;
+        return above ? inf : -inf;
+      },
+      a, inf, b, -inf, 200);
+  bracket.narrow([] { return false; }, 1e-10);
+  return 0.5 * (lo + hi);
 }
 
 // Each section's time at price lambda, clamped to its bounds.

@@ -78,12 +78,14 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
   const auto wall0 = std::chrono::steady_clock::now();
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
-  if (const std::string p = plan.problem(); !p.empty()) throw DelayInputError("plan", p);
+  if (const std::string p = plan.problem(); !p.empty())
+    throw DelayInputError("plan", p, options.plan_file);
   const std::size_t n = plan.sections();
   if (library.size() != n)
-    throw DelayInputError("plan", "the plan has " + std::to_string(n) +
-                                      " sections, the line's library " +
-                                      std::to_string(library.size()));
+    throw DelayInputError("plan",
+                          "the plan has " + std::to_string(n) + " sections, the line's library " +
+                              std::to_string(library.size()),
+                          options.plan_file);
   if (train >= plan.trains.size())
     throw DelayInputError("train", "a train from 1 to " + std::to_string(plan.trains.size()) +
                                        "; got " + std::to_string(train + 1));

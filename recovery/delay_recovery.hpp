@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/error.hpp"
 #include "dp/progress_callback.hpp"
 #include "dp/section_library.hpp"
 #include "dp/termination.hpp"
@@ -57,20 +58,23 @@ struct DelayRecoveryOptions {
   // Told "recovery" (the late train; 0 of 1, then 1 of 1) and "follower" (done of
   // max_followers) as the work goes; may be empty.
   dp::ProgressFn progress;
+  // The file the plan was read from ("" for a plan made in memory): the context of an error
+  // about the plan.
+  std::string plan_file;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
 
 // Bad input to recover_delay (unknown train, the last station, a negative delay, a plan the
-// train cannot run): what() says which.
-class DelayInputError : public std::invalid_argument {
+// train cannot run): an ecorail::Error of kind kBadInput whose context names the argument
+// (field "train", "station", "delay", "frontier-span" or "plan"; for "plan" also the file,
+// DelayRecoveryOptions::plan_file). what() says what was expected.
+class DelayInputError : public std::invalid_argument, public Error {
  public:
-  DelayInputError(std::string field, const std::string& message)
-      : std::invalid_argument(message), field_(std::move(field)) {}
-  const std::string& field() const { return field_; }
-
- private:
-  std::string field_;
+  DelayInputError(std::string field, const std::string& message, std::string file = {})
+      : std::invalid_argument(message),
+        Error(ErrorKind::kBadInput, ErrorContext{std::move(file), 0, std::move(field)}) {}
+  const std::string& field() const { return context().field; }
 };
 
 struct RecoverySection {

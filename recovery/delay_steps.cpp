@@ -91,7 +91,7 @@ TrainTimes train_times(const dp::SectionLibrary& library, const Plan& plan, std:
                     "run of %.3f s",
                     train + 1, plan.stations[k].c_str(), plan.stations[k + 1].c_str(),
                     tt.planned_s[k], tt.min_s[k]);
-      throw DelayInputError("plan", buf);
+      throw DelayInputError("plan", buf, options.plan_file);
     }
   }
   for (std::size_t j = 1; j < n; ++j)

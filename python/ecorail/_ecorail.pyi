@@ -205,7 +205,8 @@ class MonteCarloResult:
     @property
     def day_substation_kJ(self) -> npt.NDArray[np.float64]: ...
 
-def montecarlo(line: Line, train: Train, *, days: int = 100, seed: int = 1,
+def montecarlo(line: Line, train: Train, *, plan: "PlanSource" = None, days: int = 100,
+               seed: int = 1,
                recovery: str = "exact", tail: str = "exponential:30", early_s: float = 10.0,
                run_early_s: float = 0.0, min_dwell_s: float = 30.0, takeover_s: float = 120.0,
                punctual_s: float = 10.0, separation_s: float = -1.0, knot_step_s: float = 1.0,
@@ -260,8 +261,28 @@ class timetable:  # submodule ecorail.timetable
                      peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                      offpeak_headway_s: Range = (300, 660), seed: int = 1,
                      time_limit_s: float = 0.0, restarts: int = 2, moves: int = 2000000,
-                     anneal_step_s: float = 1.0, gap: float = 1e-4,
+                     anneal_step_s: float = 1.0, gap: float = 1e-4, pattern: bool = False,
+                     per_train_patterns: bool = False,
                      progress: Progress = None) -> "timetable.FleetResult": ...
+        def separation(self, *, departures_s: Optional[Sequence[int]] = None,
+                       headways_s: Optional[Sequence[int]] = None, trains: int = 100,
+                       span_s: int = 63900, headway_s: Range = (120, 660),
+                       train_length_m: float = 0.0, safety_margin_m: float = 0.0,
+                       braking_m_s2: float = 0.0,
+                       follower: str = "reoptimise") -> "timetable.SeparationResult": ...
+
+    class SeparationResult:
+        def to_dict(self) -> Dict[str, Any]: ...
+        @property
+        def brief_report(self) -> str: ...
+        @property
+        def min_speed_margin_kmh(self) -> float: ...
+        @property
+        def min_distance_margin_m(self) -> float: ...
+        @property
+        def trains_resimulated(self) -> int: ...
+        @property
+        def max_late_s(self) -> float: ...
 
     @staticmethod
     def evaluate(line: Line, train: Train, *, departures_s: Optional[Sequence[int]] = None,
@@ -282,12 +303,29 @@ class timetable:  # submodule ecorail.timetable
                  peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                  offpeak_headway_s: Range = (300, 660), seed: int = 1, time_limit_s: float = 0.0,
                  restarts: int = 2, moves: int = 2000000, anneal_step_s: float = 1.0,
-                 gap: float = 1e-4, ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
+                 gap: float = 1e-4, pattern: bool = False, per_train_patterns: bool = False,
+                 ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
                  progress: Progress = None) -> "timetable.FleetResult": ...
 
 class delay:  # submodule ecorail.delay
+    class Plan:
+        name: str
+        def __init__(self, stations: Sequence[str], arrival_s: npt.ArrayLike,
+                     departure_s: npt.ArrayLike, *, name: str = "plan") -> None: ...
+        @staticmethod
+        def from_csv(path: PathLike) -> "delay.Plan": ...
+        @property
+        def stations(self) -> List[str]: ...
+        @property
+        def trains(self) -> int: ...
+        @property
+        def arrival_s(self) -> npt.NDArray[np.float64]: ...
+        @property
+        def departure_s(self) -> npt.NDArray[np.float64]: ...
+
     class Recovery:
         summary: Summary
+        def to_dict(self) -> Dict[str, Any]: ...
         @property
         def recovered(self) -> bool: ...
         @property
@@ -305,6 +343,9 @@ class delay:  # submodule ecorail.delay
 
     @staticmethod
     def recover(line: Line, train: Train, *, train_number: int, station: str, delay_s: float,
-                min_dwell_s: float = 30.0, followers: int = 5, frontier_span_s: float = 60.0,
+                plan: "PlanSource" = None, min_dwell_s: float = 30.0, followers: int = 5, frontier_span_s: float = 60.0,
                 ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0, cache: bool = True,
                 cache_dir: Optional[PathLike] = None) -> "delay.Recovery": ...
+
+# A delay study's plan: None (the 2.1 reference plan), a timetable CSV path or a delay.Plan.
+PlanSource = Union[None, PathLike, "delay.Plan"]

@@ -154,7 +154,7 @@ py::object solve_section_py(const PyLine& line, const PyTrain& train, const std:
   const auto& s = solution.summary;
   PyRun run;
   run.kind = "section";
-  run.summary = {s.termination, s.BriefReport(), s.FullReport(), s.warnings};
+  run.summary = summary_of(s, s.warnings);
   const std::string cap_note = output::speed_cap_note(line.line, {s.from, s.to}, train.train);
   run.report = output::section_report_json(
       solution, train.train, cap_note,
@@ -195,8 +195,7 @@ py::object solve_journey_py(const PyLine& line, const PyTrain& train,
       guard.run([&] { return dp::solve_journey(train.train, routes, dwells, time_s, options); });
   PyRun run;
   run.kind = "journey";
-  run.summary = {sol.summary.termination, sol.summary.BriefReport(), sol.summary.FullReport(),
-                 sol.warnings};
+  run.summary = summary_of(sol.summary, sol.warnings);
   const output::JourneyLabels labels{stops, split, engine.ds_m, engine.dv_kmh, sol.summary.threads};
   run.report = output::journey_report_json(
       sol, labels, train.train, output::speed_cap_note(line.line, stops, train.train), min_regime,
@@ -345,7 +344,7 @@ py::object journey_py(const PyLine& line, const PyTrain& train, const py::object
   PyRun run;
   run.kind = "timing journey";
   const auto& s = sol.summary;
-  run.summary = {s.termination, s.BriefReport(), s.FullReport(), s.warnings};
+  run.summary = summary_of(s, s.warnings);
   run.report = output::timing_journey_report_json(
       sol, journey.id, ds_m, dv_kmh,
       output::run_provenance_json(line.line, train.train,

@@ -2,9 +2,12 @@
 // energy (question 2.1), a thin wrapper over fleet::TimetableStudy, the object the program's
 // `timetable` command drives (cli/cmd_timetable.cpp): the study solves the line's sections and
 // the pattern every train drives and builds the energy model; to_dict() is the program's
-// --json by output::timetable_evaluation_json / timetable_optimisation_json. Pattern
-// optimisation (--optimise pattern) and the separation check are the program's for now
-// (docs/python.md).
+// --json by output::timetable_evaluation_json / timetable_optimisation_json. A Fleet keeps one
+// study and takes the study of each new fleet problem from it (TimetableStudy::with_problem,
+// sharing the line's sections); optimise (headways, pattern, per-train patterns) runs
+// TimetableStudy::optimise on a study of its own; separation runs the service simulator with
+// safe separation (service/) and gives the energy JSON's "separation" block
+// (output/separation_json.hpp).
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -12,9 +15,11 @@
 #include "data/route_builder.hpp"
 #include "energy/model_registry.hpp"
 #include "fleet/timetable_study.hpp"
+#include "output/separation_json.hpp"
 #include "output/timetable_json.hpp"
 #include "power/supply_loader.hpp"
 #include "python/src/common.hpp"
+#include "service/pattern_service.hpp"
 
 namespace ecorail::python {
 
@@ -36,13 +41,6 @@ struct FleetArgs {
   EngineArgs engine;
 };
 
-int whole(double v, const std::string& field) {
-  if (v != std::floor(v) || std::fabs(v) > 1e9) {
-    bad_argument(field, "whole seconds", std::to_string(v));
-  }
-  return static_cast<int>(v);
-}
-
 struct PyFleet {
   nlohmann::json report;
   energy::FleetEvaluation evaluation;
@@ -56,21 +54,21 @@ fleet::FleetProblem fleet_problem(const FleetArgs& a) {
   fleet::FleetProblem p;
   p.trains = a.trains;
   p.span_s = a.span_s;
-  p.headway_min_s = whole(a.headway_s.first, "headway_s");
-  p.headway_max_s = whole(a.headway_s.second, "headway_s");
+  p.headway_min_s = whole_seconds("headway_s", a.headway_s.first);
+  p.headway_max_s = whole_seconds("headway_s", a.headway_s.second);
   if (!(a.trip_time_s > 0.0))
     bad_argument("trip_time_s", "a trip time in s > 0", std::to_string(a.trip_time_s));
   p.trip_time_s = a.trip_time_s;
   p.dwell_min_s = a.dwell_range_s.first;
   p.dwell_max_s = a.dwell_range_s.second;
   for (const auto& [from, to] : a.peaks) {
-    p.peak_windows.push_back({whole(from, "peaks"), whole(to, "peaks")});
+    p.peak_windows.push_back({whole_seconds("peaks", from), whole_seconds("peaks", to)});
   }
   if (p.windowed()) {
-    p.peak_headway_min_s = whole(a.peak_headway_s.first, "peak_headway_s");
-    p.peak_headway_max_s = whole(a.peak_headway_s.second, "peak_headway_s");
-    p.headway_min_s = whole(a.offpeak_headway_s.first, "offpeak_headway_s");
-    p.headway_max_s = whole(a.offpeak_headway_s.second, "offpeak_headway_s");
+    p.peak_headway_min_s = whole_seconds("peak_headway_s", a.peak_headway_s.first);
+    p.peak_headway_max_s = whole_seconds("peak_headway_s", a.peak_headway_s.second);
+    p.headway_min_s = whole_seconds("offpeak_headway_s", a.offpeak_headway_s.first);
+    p.headway_max_s = whole_seconds("offpeak_headway_s", a.offpeak_headway_s.second);
   }
   require_valid(p);
   if (!(a.dwell_s >= p.dwell_min_s && a.dwell_s <= p.dwell_max_s)) {
@@ -127,10 +125,7 @@ struct StudyInputs {
 StudyInputs study_inputs(const PyLine& line, const PyTrain& train, const FleetArgs& a) {
   StudyInputs in{line.line, train.train, engine_options(a.engine, train), a.dwell_s,
                  model_options(a)};
-  if (train.train.has_efficiency_maps()) {
-    bad_argument("train", "a train with constant efficiencies for the fleet models",
-                 "'" + train.train.name + "'");
-  }
+  check_fleet_train(train);
   if (!(a.dwell_s >= 0.0)) bad_argument("dwell_s", "a dwell in s >= 0", std::to_string(a.dwell_s));
   require_valid(in.engine);
   return in;
@@ -179,9 +174,9 @@ bool same_problem(const fleet::FleetProblem& a, const fleet::FleetProblem& b) {
 }
 
 // ecorail.timetable.Fleet: the inputs of the study and the study of the last problem asked for.
-// A study holds one fleet problem (its model is built for that fleet), so a call with another
-// problem builds a new study: its sections and pattern are solved again (the same pattern: the
-// trip time and the dwell are the Fleet's).
+// A study holds one fleet problem (its model is built for that fleet); a call with another
+// problem takes the study of that problem from it (TimetableStudy::with_problem): the line's
+// sections are shared, only the model (and the pattern, when the trip time differs) is made.
 struct FleetState {
   std::mutex mutex;  // one call at a time on a Fleet (its study is replaced by another problem)
   StudyInputs inputs;
@@ -212,9 +207,10 @@ PyFleetLine make_fleet(const PyLine& line, const PyTrain& train, const FleetArgs
 // The Fleet's study for problem, built again when the problem differs from its study's; the
 // caller holds the state's mutex and has released the GIL.
 fleet::TimetableStudy& study_for(FleetState& state, const fleet::FleetProblem& problem) {
-  if (!state.study || !same_problem(state.study->problem(), problem)) {
-    state.study.reset();
+  if (!state.study) {
     state.study = make_study(state.inputs, problem);
+  } else if (!same_problem(state.study->problem(), problem)) {
+    state.study = state.study->with_problem(problem);
   }
   return *state.study;
 }
@@ -239,10 +235,11 @@ std::vector<int> given_departures(const fleet::FleetProblem& p, const py::object
   }
   std::vector<int> t;
   if (!departures_s.is_none()) {
-    for (const auto& v : departures_s) t.push_back(whole(py::cast<double>(v), "departures_s"));
+    for (const auto& v : departures_s)
+      t.push_back(whole_seconds("departures_s", py::cast<double>(v)));
   } else if (!headways_s.is_none()) {
     std::vector<int> h;
-    for (const auto& v : headways_s) h.push_back(whole(py::cast<double>(v), "headways_s"));
+    for (const auto& v : headways_s) h.push_back(whole_seconds("headways_s", py::cast<double>(v)));
     t = fleet::departures_from_headways(h);
   } else {
     t = fleet::departures_from_headways(fleet::uniform_headways(p));
@@ -273,39 +270,62 @@ PyFleet evaluate_py(FleetState& state, const FleetArgs& a, const py::object& dep
   return out;
 }
 
-PyFleet optimise_py(FleetState& state, const FleetArgs& a, std::uint64_t seed, double time_limit_s,
-                    int restarts, long moves, double anneal_step_s, double gap,
+// What the search is asked for besides the fleet: headway search options and whether the
+// pattern (dwells and running times, as `--optimise pattern`) or per-train patterns
+// (`--optimise per-train`) are searched too.
+struct OptimiseArgs {
+  std::uint64_t seed = 1;
+  double time_limit_s = 0.0;
+  int restarts = 2;
+  long moves = 2000000L;
+  double anneal_step_s = 1.0;
+  double gap = 1e-4;
+  bool pattern = false;             // --optimise pattern
+  bool per_train_patterns = false;  // --per-train-patterns (a pattern search)
+};
+
+PyFleet optimise_py(FleetState& state, const FleetArgs& a, const OptimiseArgs& args,
                     const py::object& progress) {
   const fleet::FleetProblem problem = fleet_problem(a);
-  fleet::HeadwayOptimiserOptions o;
-  o.seed = seed;
-  o.time_limit_s = time_limit_s;
-  o.restarts = restarts;
-  o.moves_per_run = moves;
-  o.anneal_step_s = anneal_step_s;
-  o.gap_fraction = gap;
+  fleet::StudyOptimiseOptions so;
+  fleet::HeadwayOptimiserOptions& o = so.headways;
+  o.seed = args.seed;
+  o.time_limit_s = args.time_limit_s;
+  o.restarts = args.restarts;
+  o.moves_per_run = args.moves;
+  o.anneal_step_s = args.anneal_step_s;
+  o.gap_fraction = args.gap;
   o.threads = a.engine.threads;
-  require_valid(o);
+  so.pattern = args.pattern || args.per_train_patterns;
+  so.per_train_patterns = args.per_train_patterns;
+  if (args.per_train_patterns && a.model != "power-flow" && a.model != "sections") {
+    bad_argument("per_train_patterns",
+                 "model='power-flow' or 'sections' (the per-train search prices one train's "
+                 "pattern against the fleet's power balance)",
+                 "model='" + a.model + "'");
+  }
+  require_valid(so);
   Interruptible guard(progress);
   const dp::ProgressFn check = guard.callback();
   o.progress = [&check](const fleet::OptimiserProgress& p) { check(p.stage.c_str(), 0, 0); };
+  so.pattern_progress = [&check](const fleet::PatternProgress& p) { check(p.stage.c_str(), 0, 0); };
   PyFleet out;
   std::string message;
   bool usable = false;  // the optimiser's own test: a budget-stopped search is a result
   guard.run([&] {
     std::lock_guard<std::mutex> lock(state.mutex);
-    const fleet::TimetableStudy& s = study_for(state, problem);
-    // What TimetableStudy::optimise runs for headways alone, called here so that a failed
-    // search still gives its flagged result to ecorail.SolveError (the study throws instead).
-    fleet::StudyOptimisation r;
-    r.result = fleet::optimise_headways(s.model(), s.problem(), o);
+    // A study of its own (sharing the Fleet's sections): a pattern search keeps the pattern it
+    // found in the study it ran on, never in the Fleet's.
+    const std::unique_ptr<fleet::TimetableStudy> s =
+        study_for(state, problem).with_problem(problem);
+    const fleet::StudyOptimisation r = s->optimise(so);
     out.evaluation = r.result.evaluation;
-    out.report = output::timetable_optimisation_json(s, r, seed);
+    out.report = output::timetable_optimisation_json(*s, r, args.seed);
     const auto& sm = r.result.summary;
-    out.summary = {sm.termination, sm.BriefReport(), sm.FullReport(), {}};
+    out.summary = summary_of(sm);
     message = sm.message;
     usable = sm.IsSolutionUsable();
-    if (usable) add_trace(out, s, r.result.evaluation.departures_s);
+    if (usable) add_trace(out, *s, r.result.evaluation.departures_s);
     return 0;
   });
   if (!usable) {
@@ -314,11 +334,50 @@ PyFleet optimise_py(FleetState& state, const FleetArgs& a, std::uint64_t seed, d
   return out;
 }
 
-// The fleet's arguments with the problem's own (trains, span, headways, peaks).
-FleetArgs with_problem(const PyFleetLine& f, int trains, int span_s, Range headway_s,
-                       Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
-                       Range offpeak_headway_s) {
-  FleetArgs a = f.args;
+// The timetable's trains run together with safe separation (`timetable evaluate --separation`).
+struct PySeparation {
+  nlohmann::json report;  // the energy JSON's "separation" block
+  service::ServiceSummary summary;
+};
+
+PySeparation separation_py(FleetState& state, const FleetArgs& a, const py::object& departures_s,
+                           const py::object& headways_s, double train_length_m,
+                           double safety_margin_m, double braking_m_s2,
+                           const std::string& follower) {
+  const fleet::FleetProblem problem = fleet_problem(a);
+  const std::vector<int> departures = given_departures(problem, departures_s, headways_s);
+  service::ServiceOptions o;
+  o.separation.train_length_m = train_length_m;
+  o.separation.safety_margin_m = safety_margin_m;
+  o.separation.braking_m_s2 = braking_m_s2;
+  const auto mode = service::follower_mode_from_name(follower);
+  if (!mode) bad_argument("follower", "'reoptimise', 'supervise' or 'wait'", "'" + follower + "'");
+  o.mode = *mode;
+  require_valid(o);
+  PySeparation out;
+  {
+    // The service simulator has no progress callback: Ctrl-C is seen when it returns.
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(state.mutex);
+    const fleet::TimetableStudy& s = study_for(state, problem);
+    const fleet::FleetPattern& pattern = s.pattern().pattern;
+    const service::ServiceResult r = service::simulate_service(
+        s.library(),
+        service::plan_from_running_times(s.library(), pattern.running_times_s, pattern.dwells_s),
+        std::vector<double>(departures.begin(), departures.end()), o);
+    out.report = output::separation_json(r, o);
+    out.summary = r.summary;
+  }
+  if (out.summary.cap_exceeded) {
+    raise_solve_error("a simulated train exceeds the separation cap: " + out.summary.BriefReport(),
+                      py::cast(out));
+  }
+  return out;
+}
+
+// The fleet problem's arguments (trains, span, headways, dwell range, peaks) into a.
+void set_problem(FleetArgs& a, int trains, int span_s, Range headway_s, Range dwell_range_s,
+                 std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s) {
   a.trains = trains;
   a.span_s = span_s;
   a.headway_s = headway_s;
@@ -326,6 +385,15 @@ FleetArgs with_problem(const PyFleetLine& f, int trains, int span_s, Range headw
   a.peaks = std::move(peaks);
   a.peak_headway_s = peak_headway_s;
   a.offpeak_headway_s = offpeak_headway_s;
+}
+
+// The fleet's arguments with the problem's own (trains, span, headways, peaks).
+FleetArgs with_problem(const PyFleetLine& f, int trains, int span_s, Range headway_s,
+                       Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
+                       Range offpeak_headway_s) {
+  FleetArgs a = f.args;
+  set_problem(a, trains, span_s, headway_s, dwell_range_s, std::move(peaks), peak_headway_s,
+              offpeak_headway_s);
   return a;
 }
 
@@ -348,15 +416,10 @@ void add_fleet_args(FleetArgs& a, const std::string& model, const std::string& o
   if (!power_supply.is_none()) {
     a.power_supply = py::str(py::module_::import("os").attr("fspath")(power_supply));
   }
-  a.trains = trains;
-  a.span_s = span_s;
-  a.headway_s = headway_s;
+  set_problem(a, trains, span_s, headway_s, dwell_range_s, std::move(peaks), peak_headway_s,
+              offpeak_headway_s);
   a.trip_time_s = trip_time_s;
   a.dwell_s = dwell_s;
-  a.dwell_range_s = dwell_range_s;
-  a.peaks = std::move(peaks);
-  a.peak_headway_s = peak_headway_s;
-  a.offpeak_headway_s = offpeak_headway_s;
   a.engine = {ds_m, dv_kmh, "traction", "hold", threads};
 }
 
@@ -431,6 +494,29 @@ void bind_timetable(py::module_& m) {
           "used_regen_power_W", [](const PyFleet& f) { return to_numpy(f.used_W); },
           "Regenerated power used by other trains per bin, W.");
 
+  py::class_<PySeparation>(tt, "SeparationResult",
+                           "Every train of a timetable run together with safe separation: the "
+                           "least margins to the cap, where it binds and how held-up followers "
+                           "were driven; energies in kJ, times in s, distances in m.")
+      .def(
+          "to_dict", [](const PySeparation& r) { return to_python(r.report); },
+          "The \"separation\" block of `ecorail timetable evaluate --separation --json`.")
+      .def_property_readonly("brief_report",
+                             [](const PySeparation& r) { return r.summary.BriefReport(); })
+      .def_property_readonly(
+          "min_speed_margin_kmh",
+          [](const PySeparation& r) { return r.summary.min_speed_margin_kmh; },
+          "Least margin of any train's speed below the cap, km/h.")
+      .def_property_readonly(
+          "min_distance_margin_m",
+          [](const PySeparation& r) { return r.summary.min_distance_margin_m; },
+          "Least margin of any train's braking distance to the train ahead, m.")
+      .def_property_readonly("trains_resimulated",
+                             [](const PySeparation& r) { return r.summary.trains_resimulated; })
+      .def_property_readonly(
+          "max_late_s", [](const PySeparation& r) { return r.summary.max_late_s; },
+          "Latest arrival at a stop after the timetable, s.");
+
   py::class_<PyFleetLine>(tt, "Fleet",
                           "The line's sections, an energy model and the pattern every train "
                           "drives (the optimal split of trip_time_s with dwell_s at every stop), "
@@ -471,19 +557,46 @@ void bind_timetable(py::module_& m) {
           [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
              std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
              std::uint64_t seed, double time_limit_s, int restarts, long moves,
-             double anneal_step_s, double gap, const py::object& progress) {
+             double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
+             const py::object& progress) {
             return optimise_py(*f.state,
                                with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                             std::move(peaks), peak_headway_s, offpeak_headway_s),
-                               seed, time_limit_s, restarts, moves, anneal_step_s, gap, progress);
+                               {seed, time_limit_s, restarts, moves, anneal_step_s, gap, pattern,
+                                per_train_patterns},
+                               progress);
           },
           py::kw_only(), py::arg("trains") = 100, py::arg("span_s") = 63900,
           py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
           py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
           py::arg("offpeak_headway_s") = Range{300, 660}, py::arg("seed") = 1,
           py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("moves") = 2000000L,
-          py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4, py::arg("progress") = py::none(),
-          "ecorail.timetable.optimise on this fleet's sections and pattern.");
+          py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4, py::arg("pattern") = false,
+          py::arg("per_train_patterns") = false, py::arg("progress") = py::none(),
+          "ecorail.timetable.optimise on this fleet's sections and pattern (the Fleet keeps its "
+          "own pattern: a pattern search runs on a study of its own).")
+      .def(
+          "separation",
+          [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
+             int trains, int span_s, Range headway_s, double train_length_m, double safety_margin_m,
+             double braking_m_s2, const std::string& follower) {
+            FleetArgs a = with_problem(f, trains, span_s, headway_s, f.args.dwell_range_s, {},
+                                       f.args.peak_headway_s, f.args.offpeak_headway_s);
+            return separation_py(*f.state, a, departures_s, headways_s, train_length_m,
+                                 safety_margin_m, braking_m_s2, follower);
+          },
+          py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
+          py::arg("trains") = 100, py::arg("span_s") = 63900,
+          py::arg("headway_s") = Range{120, 660}, py::arg("train_length_m") = 0.0,
+          py::arg("safety_margin_m") = 0.0, py::arg("braking_m_s2") = 0.0,
+          py::arg("follower") = "reoptimise",
+          "Every train of the timetable run together with safe separation v <= sqrt(2 L b), as "
+          "`ecorail timetable evaluate --separation`: L the distance to the train ahead's tail "
+          "less safety_margin_m (train_length_m, m), b = braking_m_s2 (0: the train's maximum "
+          "braking force at 10 km/h over its mass); a follower held up where waiting would "
+          "make it late is driven by follower: 'reoptimise' (energy-optimal under the cap), "
+          "'supervise' (its planned control, braked) or 'wait'. to_dict() is the energy "
+          "document's \"separation\" block.");
 
   tt.def(
       "evaluate",
@@ -520,14 +633,16 @@ void bind_timetable(py::module_& m) {
          py::object power_supply, int trains, int span_s, Range headway_s, double trip_time_s,
          double dwell_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
          Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, long moves,
-         double anneal_step_s, double gap, double ds_m, double dv_kmh, int threads,
-         const py::object& progress) {
+         double anneal_step_s, double gap, bool pattern, bool per_train_patterns, double ds_m,
+         double dv_kmh, int threads, const py::object& progress) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return optimise_py(*fleet_state(line, train, a), a, seed, time_limit_s, restarts, moves,
-                           anneal_step_s, gap, progress);
+        return optimise_py(
+            *fleet_state(line, train, a), a,
+            {seed, time_limit_s, restarts, moves, anneal_step_s, gap, pattern, per_train_patterns},
+            progress);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
       py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
@@ -538,14 +653,17 @@ void bind_timetable(py::module_& m) {
       py::arg("peak_headway_s") = Range{120, 150}, py::arg("offpeak_headway_s") = Range{300, 660},
       py::arg("seed") = 1, py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2,
       py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4,
-      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
-      py::arg("progress") = py::none(),
+      py::arg("pattern") = false, py::arg("per_train_patterns") = false, py::arg("ds_m") = 5.0,
+      py::arg("dv_kmh") = 0.2, py::arg("threads") = 0, py::arg("progress") = py::none(),
       (std::string("The headways that minimise substation energy, as `ecorail timetable "
                    "optimise`: exact DPs for the overlap models, annealing (restarts, moves, "
                    "seed, anneal_step_s, time_limit_s in s; 0: none) + polish + a bound for "
                    "power-flow. CONVERGENCE only when the proven gap is at most gap (a fraction of "
                    "the substation energy); a search stopped by time_limit_s or its moves with a "
-                   "larger gap is NO_CONVERGENCE with its gap.") +
+                   "larger gap is NO_CONVERGENCE with its gap (a result: is_solution_usable). "
+                   "pattern: the dwells and running times too (`--optimise pattern`); "
+                   "per_train_patterns: each train its own pattern (power-flow and sections "
+                   "models).") +
        kFleetDoc)
           .c_str());
 }

@@ -3,7 +3,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 
+#include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/train_io.hpp"
 #include "dp/journey_plan.hpp"
@@ -15,6 +17,7 @@
 #include "policy/advisor.hpp"
 #include "policy/ladder.hpp"
 #include "policy/policy_table.hpp"
+#include "recovery/delay_recovery.hpp"
 
 namespace ecorail::python {
 
@@ -176,10 +179,35 @@ dp::EngineOptions engine_options(const EngineArgs& a, const PyTrain& train) {
   return e;
 }
 
+void check_range(const std::string& field, double value, double min, double max,
+                 const std::string& expected) {
+  if (!(value >= min && value <= max) || !std::isfinite(value))
+    bad_argument(field, expected, data::format_number(value));
+}
+
+void check_count(const std::string& field, long long value, long long min, long long max,
+                 const std::string& expected) {
+  if (value < min || value > max) bad_argument(field, expected, std::to_string(value));
+}
+
+int whole_seconds(const std::string& field, double value) {
+  if (value != std::floor(value) || std::fabs(value) > 1e9)
+    bad_argument(field, "whole seconds", data::format_number(value));
+  return static_cast<int>(value);
+}
+
+void check_fleet_train(const PyTrain& train) {
+  if (train.train.has_efficiency_maps())
+    bad_argument("train", "a train with constant efficiencies for the fleet models",
+                 "'" + train.train.name + "'");
+}
+
 void bind_common(py::module_& m) {
   py::enum_<dp::Termination>(m, "Termination",
                              "How a solve ended: CONVERGENCE (meets every target), NO_CONVERGENCE "
-                             "(arrives but misses its time), FAILURE (misses its stop).")
+                             "(a single-train run that arrives but misses its time; a fleet "
+                             "search stopped by its budget, with its proven gap), FAILURE (no "
+                             "result: misses its stop, or no timetable the model solved).")
       .value("CONVERGENCE", dp::Termination::CONVERGENCE)
       .value("NO_CONVERGENCE", dp::Termination::NO_CONVERGENCE)
       .value("FAILURE", dp::Termination::FAILURE);
@@ -191,8 +219,12 @@ void bind_common(py::module_& m) {
       .def_readonly("brief_report", &PySummary::brief_report)
       .def_readonly("full_report", &PySummary::full_report)
       .def_readonly("warnings", &PySummary::warnings)
-      .def_property_readonly("is_solution_usable", &PySummary::is_solution_usable,
-                             "True only for CONVERGENCE: the result meets its stop and time.")
+      .def_property_readonly(
+          "is_solution_usable", &PySummary::is_solution_usable,
+          "Whether the result may be used, as the library's summary says (as Ceres): never for "
+          "FAILURE; for NO_CONVERGENCE when the solver stopped on a budget with a result that "
+          "keeps every constraint (a fleet search, with its proven gap), not when it means a "
+          "run that misses its running time (single-train solves).")
       .def("__repr__", [](const PySummary& s) { return s.brief_report; });
 
   // ecorail.SolveError: a RuntimeError that carries the flagged result.
@@ -241,6 +273,14 @@ class SolveError(RuntimeError):
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const policy::PolicyMismatchError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const recovery::DelayInputError& e) {
+      // The argument it names, as the keyword argument is spelled.
+      const std::string& f = e.field();
+      const std::string field = f == "train"           ? "train_number"
+                                : f == "delay"         ? "delay_s"
+                                : f == "frontier-span" ? "frontier_span_s"
+                                                       : f;
+      PyErr_SetString(PyExc_ValueError, (field + ": expected " + e.what()).c_str());
     } catch (const std::invalid_argument& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const std::bad_alloc&) {

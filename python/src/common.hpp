@@ -56,6 +56,17 @@ void require_valid(const Options& options) {
 [[noreturn]] void bad_argument(const std::string& field, const std::string& expected,
                                const std::string& got);
 
+// The argument checks the fleet, delay and Monte Carlo functions share, each a ValueError
+// naming its keyword argument (bad_argument): value within [min, max] (and finite), an integer
+// within [min, max], whole seconds (|v| <= 1e9), and a train the fleet models can run
+// (constant efficiencies).
+void check_range(const std::string& field, double value, double min, double max,
+                 const std::string& expected);
+void check_count(const std::string& field, long long value, long long min, long long max,
+                 const std::string& expected);
+int whole_seconds(const std::string& field, double value);
+void check_fleet_train(const PyTrain& train);
+
 // A library JSON document as Python objects (dict, list, int, float, str, bool, None).
 py::object to_python(const nlohmann::json& j);
 
@@ -74,13 +85,25 @@ py::array_t<int> to_numpy(const std::vector<int>& v);
 py::array to_numpy(const std::vector<std::string>& v);  // numpy str array ('<U..')
 
 // How a solve ended, as a Python object: termination (ecorail.Termination), brief_report,
-// full_report, warnings, is_solution_usable.
+// full_report, warnings, is_solution_usable. Usable is what the library's summary says
+// (IsSolutionUsable), as Ceres: FAILURE never is; NO_CONVERGENCE is usable where the solver
+// stopped on a budget with a result that keeps every constraint (a fleet search, with its
+// proven gap), not where it means a run that misses its running time (the single-train solves,
+// dp::is_usable). A summary made without a library summary falls back to dp::is_usable.
 struct PySummary {
   dp::Termination termination = dp::Termination::FAILURE;
   std::string brief_report, full_report;
   std::vector<std::string> warnings;
-  bool is_solution_usable() const { return dp::is_usable(termination); }
+  std::optional<bool> usable;  // the library summary's IsSolutionUsable()
+  bool is_solution_usable() const { return usable.value_or(dp::is_usable(termination)); }
 };
+
+// The PySummary of a library summary (Termination, BriefReport, FullReport, IsSolutionUsable).
+template <typename Summary>
+PySummary summary_of(const Summary& s, std::vector<std::string> warnings = {}) {
+  return {s.termination, s.BriefReport(), s.FullReport(), std::move(warnings),
+          s.IsSolutionUsable()};
+}
 
 // Thrown through library code by the progress callback when Python asked to stop (Ctrl-C, or
 // the user's progress callback raised); the Python error is kept and raised again once the GIL

@@ -1,7 +1,9 @@
 """Fleets, delays and Monte Carlo days from Python against the ecorail program on the reference
-line: ecorail.timetable.evaluate/optimise (energy document of --json), ecorail.delay.recover
-(the README's figures of question 3.1, and the program's JSON summary) and ecorail.montecarlo
-(the program's --json). The frontier cache is one directory in the build tree for both."""
+line: ecorail.timetable.evaluate/optimise (energy document of --json, pattern search too) and
+Fleet.separation (its "separation" block), ecorail.delay.recover (the README's figures of
+question 3.1, and the program's --json) and ecorail.montecarlo (the program's --json), on the
+reference plan and on a timetable CSV given as a path or as an ecorail.delay.Plan. The frontier
+cache is one directory in the build tree for both."""
 
 import os
 
@@ -88,6 +90,10 @@ def test_delay_recover_matches_readme_and_cli(reference, run_cli, cache_dir):
             f"{r.plan_energy_kJ:.1f}") == ("103534.2", "126694.6", "77379.8")
     summary = cli["summary"] if "summary" in cli else cli
     assert r.recovery_energy_kJ == pytest.approx(summary["recovery_energy_kJ"], abs=1e-9)
+    # to_dict() is the program's --json, provenance included (wall-clock figures aside).
+    clock = ("wall_s", "brief_report")
+    assert without_wall_times(r.to_dict(), clock) == without_wall_times(cli, clock)
+    assert r.to_dict()["provenance"]["options"]["plan"] == "reference"
     assert [s["from"] for s in r.sections] == ["A9", "A10"]
     with pytest.raises(ValueError, match="station"):
         ecorail.delay.recover(line, train, train_number=37, station="A14", delay_s=30,
@@ -121,6 +127,15 @@ def test_peak_windows_match_cli(reference, run_cli):
     day = fleet.evaluate()
     assert day.departures_s.shape == (100,)
     assert day.traction_energy_kJ / 100 == pytest.approx(r.traction_energy_kJ / 240, rel=1e-12)
+    # The separation check on the same fleet: the "separation" block of the program's JSON.
+    cli = run_cli("timetable", "evaluate", "--model", "overlap", "--overlap", "either",
+                  "--trains", "3", "--span", "300", "--uniform", "--separation", "--follower",
+                  "supervise", "--quiet")
+    s = fleet.separation(trains=3, span_s=300, follower="supervise")
+    assert s.to_dict() == cli["separation"]
+    assert s.min_distance_margin_m == cli["separation"]["min_distance_margin_m"]
+    with pytest.raises(ValueError, match="follower"):
+        fleet.separation(trains=3, span_s=300, follower="fast")
 
 
 def test_optimise_gap_matches_cli(reference, run_cli):
@@ -137,8 +152,59 @@ def test_optimise_gap_matches_cli(reference, run_cli):
     # The same search held to the default gap (1e-4) has not proven it: a result, flagged.
     strict = fleet.optimise(trains=12, span_s=6000, moves=20000)
     assert strict.summary.termination == ecorail.Termination.NO_CONVERGENCE
+    # A search stopped by its budget is a result (as Ceres' NO_CONVERGENCE): usable.
+    assert strict.summary.is_solution_usable
     assert strict.to_dict()["summary"]["gap_fraction_of_substation"] > 1e-4
-    # A Fleet's study, rebuilt for another problem, gives the free function's document.
+    # A Fleet's study, taken for another problem, gives the free function's document.
     other = fleet.evaluate(trains=20, span_s=6000, headway_s=(120, 660))
     alone = ecorail.timetable.evaluate(line, train, trains=20, span_s=6000)
     assert other.to_dict() == alone.to_dict()
+    # The pattern search (a short one): never worse than the headways alone, a result when
+    # stopped by its time limit, and the Fleet keeps its own pattern.
+    found = fleet.optimise(trains=12, span_s=6000, moves=2000, restarts=1, time_limit_s=2,
+                           pattern=True)
+    assert found.summary.is_solution_usable
+    search = found.to_dict()["pattern_search"]
+    assert found.substation_energy_kJ <= search["headways_only_substation_energy_kJ"] + 1e-6
+    assert fleet.evaluate(trains=20, span_s=6000).to_dict() == alone.to_dict()
+    with pytest.raises(ValueError, match="per_train_patterns"):
+        ecorail.timetable.optimise(line, train, model="overlap", trains=12, span_s=6000,
+                                   per_train_patterns=True)  # refused before any work
+
+
+def test_delay_and_montecarlo_on_a_plan_csv(reference, run_cli, cache_dir, tmp_path,
+                                             monkeypatch):
+    line, train = reference
+    # Three trains A6 -> A9, 300 s apart: the timetable CSV `--plan` reads (as tests/cli/delay.sh).
+    run_cli("timetable", "evaluate", "--from", "A6", "--to", "A9", "--trip-time", "380",
+            "--trains", "3", "--span", "600", "--headway", "120:660", "--csv", "plan.csv",
+            "--quiet", json_flag=None)
+    monkeypatch.chdir(tmp_path)  # the plan named as the program is given it: "plan.csv"
+    args = ("--train", "2", "--station", "A7", "--delay", "10", "--cache-dir", cache_dir)
+    cli = run_cli("delay", "--plan", "plan.csv", *args)
+    by_path = ecorail.delay.recover(line, train, train_number=2, station="A7", delay_s=10,
+                                    plan="plan.csv", cache_dir=cache_dir)
+    clock = ("wall_s", "brief_report")
+    assert without_wall_times(by_path.to_dict(), clock) == without_wall_times(cli, clock)
+    # The same plan as an object (arrays read back from the file) gives the same document.
+    p = ecorail.delay.Plan.from_csv("plan.csv")
+    assert p.trains == 3 and p.arrival_s.shape == (3, len(p.stations))
+    assert p.arrival_s.dtype == np.float64
+    assert np.all(np.diff(p.departure_s[:, 0]) == 300.0)
+    same = ecorail.delay.Plan(p.stations, p.arrival_s, p.departure_s, name="plan.csv")
+    by_object = ecorail.delay.recover(line, train, train_number=2, station="A7", delay_s=10,
+                                      plan=same, cache_dir=cache_dir)
+    assert without_wall_times(by_object.to_dict(), clock) == without_wall_times(cli, clock)
+    with pytest.raises(ValueError, match="train_number"):
+        ecorail.delay.recover(line, train, train_number=4, station="A7", delay_s=10,
+                              plan=p, cache_dir=cache_dir)
+    with pytest.raises(ValueError, match="arrival_s/departure_s"):
+        ecorail.delay.Plan(p.stations, p.arrival_s[::-1], p.departure_s[::-1])
+    mc_cli = run_cli("montecarlo", "--plan", "plan.csv", "--days", "4", "--seed", "2",
+                     "--cache-dir", cache_dir, "--quiet")
+    mc = ecorail.montecarlo(line, train, plan="plan.csv", days=4, seed=2, cache_dir=cache_dir,
+                            threads=1)
+    assert mc.to_dict() == mc_cli
+    assert mc.summary.termination == ecorail.Termination.CONVERGENCE
+    assert mc.summary.is_solution_usable
+
