@@ -19,6 +19,7 @@
 // at the first train that is not held up.
 #pragma once
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -51,6 +52,15 @@ struct DelayRecoveryOptions {
   AllocationOptions allocation;
   bool check_followers = true;
   int max_followers = 5;  // followers simulated at most, behind the late train
+  // A held-up follower is driven back on time, by the late train's exact recovery re-applied
+  // at every stop where it leaves late (false: it waits, then runs its plan, faster only
+  // where the wait made it late in that section).
+  bool recover_followers = true;
+  // Lateness first: minimise the total arrival lateness of the late train and its followers,
+  // then the energy (the late train flat out up to the last section before the station where
+  // it is back on time, that section as slow as keeps the total lateness least). false: the
+  // late train's earliest station back on time, then its least energy (the exact recovery).
+  bool lateness_first = false;
   // Separation (the cap) and how a held-up follower is driven: it waits at the stop, then runs
   // the section faster for the time left (FollowerMode::Wait, delay_service_options()).
   service::ServiceOptions service = delay_service_options();
@@ -110,6 +120,9 @@ struct FollowerCheck {
   double min_gap_m = 0.0;
   double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
   double headway_s = 0.0;       // its planned departure after the train ahead's
+  double traction_kJ = 0.0;       // its actual run over the whole line, re-simulated
+  double plan_traction_kJ = 0.0;  // its planned run
+  double lateness_sum_s = 0.0;    // sum over its arrivals of the lateness (0 when on time)
 };
 
 struct DelayRecoverySummary {
@@ -132,6 +145,13 @@ struct DelayRecoverySummary {
   bool cascade_ends = true;
   double cascade_final_lateness_s = 0.0;
   bool plan_absorbs = true;
+  // "energy-first" (the exact recovery) or "lateness-first"; the sum over the late train and
+  // its held-up followers of their arrival lateness at every stop; in lateness-first mode the
+  // energy-first recovery's traction and total lateness beside it (NaN otherwise).
+  std::string recovery_mode = "energy-first";
+  double total_lateness_s = 0.0;
+  double energy_first_energy_kJ = std::numeric_limits<double>::quiet_NaN();
+  double energy_first_total_lateness_s = std::numeric_limits<double>::quiet_NaN();
   double wall_s = 0.0;
   std::vector<std::string> warnings;
 

@@ -76,7 +76,10 @@ nlohmann::json delay_report_json(const DelayRecoveryResult& r, const Plan& plan,
                          {"plan_margin_kmh", number_or_null(f.plan_margin_kmh)},
                          {"on_the_line_together", std::isfinite(f.min_speed_margin_kmh)},
                          {"station_wait_s", f.station_wait_s},
-                         {"headway_s", f.headway_s}});
+                         {"headway_s", f.headway_s},
+                         {"traction_kJ", f.traction_kJ},
+                         {"plan_traction_kJ", f.plan_traction_kJ},
+                         {"lateness_sum_s", f.lateness_sum_s}});
   nlohmann::json j = {{"train", train_number},
                       {"station", sm.station},
                       {"delay_s", sm.delay_s},
@@ -91,6 +94,11 @@ nlohmann::json delay_report_json(const DelayRecoveryResult& r, const Plan& plan,
                       {"plan_energy_kJ", sm.plan_energy_kJ},
                       {"rule_energy_kJ", sm.rule_energy_kJ},
                       {"rule_extra_energy_kJ", sm.rule_energy_kJ - sm.recovery_energy_kJ},
+                      {"recovery_mode", sm.recovery_mode},
+                      {"total_lateness_s", sm.total_lateness_s},
+                      {"energy_first_energy_kJ", number_or_null(sm.energy_first_energy_kJ)},
+                      {"energy_first_total_lateness_s",
+                       number_or_null(sm.energy_first_total_lateness_s)},
                       {"sections", sections},
                       {"trains", trains},
                       {"followers", followers},
@@ -117,6 +125,7 @@ nlohmann::json delay_report_json(const DelayRecoveryResult& r, const Plan& plan,
                        {"iterations", r.allocation.iterations},
                        {"energy_by_frontiers_kJ", r.allocation.energy_J / 1e3},
                        {"brief_report", r.allocation.BriefReport()}};
+  if (sm.recovery_mode == "lateness-first") j["lateness_first"] = r.allocation.message;
   return j;
 }
 

@@ -2,7 +2,12 @@
 // run of the train ahead by the follower model of service/follower.hpp (it waits at a stop
 // rather than leave into an occupied stretch, re-drives only the sections where its planned run
 // would come closer than the braking distance, and is checked against that invariant), and the
-// next train is driven behind its actual run in turn, until one is not held up.
+// next train is driven behind its actual run in turn, until one is not held up. A held-up
+// follower is driven back on time (options.recover_followers): wherever it leaves a stop late,
+// it runs the section in the time the late train's exact recovery gives for that departure
+// (earliest station back on time by a flat-out run with least dwells, then the time split over
+// the frontiers), re-applied at every stop, so that it recovers as the late train does wherever
+// the train ahead lets it, and waits at the stop where it does not.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,7 +40,7 @@ std::string two_decimals(double x) {
 void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, std::size_t train,
                            std::size_t station, double delay_s, const RecoveryTimes& recovery,
                            const DelayRecoveryOptions& options, RunCache& cache,
-                           DelayRecoveryResult& out) {
+                           dp::FrontierStore* store, DelayRecoveryResult& out) {
   DelayRecoverySummary& sm = out.summary;
   sm.min_follower_margin_kmh = std::numeric_limits<double>::quiet_NaN();
   const std::size_t n = plan.sections();
@@ -97,8 +102,23 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     const service::SeparationScan base =
         service::scan_separation(leader_plan, follower_plan, b, sep);
     std::vector<service::CapEvent> events;
+    const TrainTimes times = train_times(library, plan, f, options);
+    service::FollowerRecovery recover;
+    recover.min_dwell_s = times.min_dwell_s;
+    const TrainStops& fst = plan.trains[f];
+    recover.run = [&](std::size_t i, double departure_s) -> const physics::SimulationResult* {
+      const double late = departure_s - fst.departure_s[i];
+      if (late <= dp::kTimeTolerance_s) return nullptr;
+      const std::size_t e = earliest_station_back(fst, times, i, departure_s, late);
+      const double t = e <= n ? split_recovery_time(library, plan, f, times, i, e, departure_s,
+                                                    options, store)
+                                    .time_s[i]
+                              : times.min_s[i];
+      return &cache.get(i, t).sim;
+    };
     service::FollowerRun run = service::drive_follower(
-        library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events);
+        library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events,
+        options.recover_followers ? &recover : nullptr);
     FollowerCheck fc;
     fc.train = static_cast<int>(f);
     fc.behind = static_cast<int>(f - 1);
@@ -110,6 +130,10 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     fc.min_gap_m = run.scan.min_gap_m;
     fc.station_wait_s = run.station_wait_s;
     fc.headway_s = departure - plan.trains[f - 1].departure_s[0];
+    fc.traction_kJ = run.traction_J / 1e3;
+    fc.plan_traction_kJ = run.plan_traction_J / 1e3;
+    for (std::size_t j = 1; j < run.late_s.size(); ++j)
+      fc.lateness_sum_s += std::max(0.0, run.late_s[j]);
     ++sm.followers_checked;
     out.followers.push_back(fc);
     if (!(sm.min_follower_margin_kmh <= fc.min_speed_margin_kmh))

@@ -55,6 +55,79 @@ bool arrives(const physics::SimulationResult& sim) {
   return dp::run_arrives(sim) && !sim.stopped_early;
 }
 
+// The sections of a held-up follower given a recovery: at every stop it leaves when it is ready
+// (its planned departure, or its arrival plus the least dwell when late) and the line ahead is
+// clear for the run it drives, that run being the recovery's for the departure (its plan when
+// on time). A run chosen for a later departure is faster and may need a longer wait, so the two
+// are iterated; the run finally driven always leaves no earlier than its own least wait.
+void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
+                      const physics::Trip& leader, const physics::Trip& planned, double b,
+                      double room, int train, const FollowerRecovery& recovery,
+                      std::vector<physics::SimulationResult>& sims,
+                      std::vector<double>& dwell_after, double& trip_departure,
+                      FollowerRun& out, std::vector<CapEvent>* events) {
+  const std::size_t n = library.size();
+  double start = trip_departure;
+  auto pick = [&](std::size_t i, double departure) {
+    const physics::SimulationResult* r = recovery.run(i, departure);
+    return r != nullptr ? r : &plan.runs[i];
+  };
+  auto rounded = [](double w) { return std::ceil((w + kWaitMargin_s) * 100.0) / 100.0; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double section_start = plan.trip.section_start_m(i);
+    const double planned_arrival = planned.stop(i + 1).arrival_s;
+    const physics::SimulationResult* run = pick(i, start);
+    double departure = start;
+    for (int it = 0; it <= kFasterTries; ++it) {
+      const double w = clearance_wait_s(leader, *run, section_start, start, b, room);
+      if (start + w <= departure + 1e-9) break;
+      departure = start + rounded(w);
+      const physics::SimulationResult* faster = pick(i, departure);
+      if (faster == run) break;
+      run = faster;
+    }
+    const double w_final = clearance_wait_s(leader, *run, section_start, start, b, room);
+    if (start + w_final > departure + 1e-9) departure = start + rounded(w_final);
+    const double wait = departure - start;
+    if (wait > 0.0 || run != &plan.runs[i]) {
+      ++out.sections_redriven;
+      if (events != nullptr) {
+        CapEvent ev;
+        ev.train = train;
+        ev.section = static_cast<int>(i);
+        ev.planned_cost_J = library.engine(i).energy_cost_J(plan.runs[i]);
+        ev.supervised_cost_J = NAN;
+        ev.reoptimised_cost_J = library.engine(i).energy_cost_J(*run);
+        ev.reoptimised_wait_s = wait;
+        ev.station_wait_s = wait;
+        ev.waited_late_s = start + wait + plan.runs[i].running_time_s - planned_arrival;
+        ev.driven = run == &plan.runs[i] ? "waited" : wait > 0.0 ? "waited, then recovered"
+                                                                 : "recovered";
+        ev.late_s = departure + run->running_time_s - planned_arrival;
+        ev.reoptimised_late_s = ev.late_s;
+        events->push_back(ev);
+      }
+    }
+    out.station_wait_s += wait;
+    if (i == 0)
+      trip_departure = departure;
+    else
+      dwell_after[i - 1] += wait;
+    sims[i] = *run;
+    const double arrival = departure + sims[i].running_time_s;
+    out.late_s[i + 1] = arrival - planned_arrival;
+    if (i + 1 < n) {
+      const double least_dwell =
+          std::min(plan.dwells_s[i], i + 1 < recovery.min_dwell_s.size()
+                                         ? recovery.min_dwell_s[i + 1]
+                                         : plan.dwells_s[i]);
+      const double next = std::max(planned.stop(i + 1).departure_s, arrival + least_dwell);
+      dwell_after[i] = next - arrival;
+      start = next;
+    }
+  }
+}
+
 }  // namespace
 
 bool keeps_separation(const SeparationScan& scan) {
@@ -65,7 +138,7 @@ bool keeps_separation(const SeparationScan& scan) {
 FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double b, int train,
-                           std::vector<CapEvent>* events) {
+                           std::vector<CapEvent>* events, const FollowerRecovery* recovery) {
   if (!(b > 0.0)) throw std::invalid_argument("the separation braking must be positive");
   const std::size_t n = library.size();
   const double room = options.separation.train_length_m + options.separation.safety_margin_m;
@@ -74,7 +147,9 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   out.planned_scan = scan_separation(leader, planned, b, options.separation);
   const SeparationScan& before = out.planned_scan;
   out.held_up = before.exceeded || before.min_distance_margin_m < 0.0 || before.min_gap_m < 0.0;
+  for (const physics::SimulationResult& r : plan.runs) out.plan_traction_J += r.energy.traction_work_J;
   if (!out.held_up) {
+    out.traction_J = out.plan_traction_J;
     out.trip = planned;
     out.scan = before;
     out.late_s.assign(n + 1, 0.0);
@@ -84,7 +159,11 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   std::vector<double> dwell_after(n, 0.0);
   double trip_departure = departure_s, start = departure_s;
   out.late_s.assign(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  const bool recovering = recovery != nullptr && static_cast<bool>(recovery->run);
+  if (recovering)
+    drive_recovering(library, plan, leader, planned, b, room, train, *recovery, sims, dwell_after,
+                     trip_departure, out, events);
+  for (std::size_t i = 0; !recovering && i < n; ++i) {
     const dp::SectionEngine& engine = library.engine(i);
     const double section_start = plan.trip.section_start_m(i);
     const double planned_arrival = planned.stop(i + 1).arrival_s;
@@ -205,6 +284,7 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
     }
   }
   out.late_s[0] = trip_departure - departure_s;
+  for (const physics::SimulationResult& r : sims) out.traction_J += r.energy.traction_work_J;
   out.trip = trip_of(library, sims, dwell_after, trip_departure);
   out.scan = scan_separation(leader, out.trip, b, options.separation);
   if (!keeps_separation(out.scan)) {

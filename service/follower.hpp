@@ -12,10 +12,15 @@
 // for its planned arrival, dp/capped_section.hpp, or its planned control braked by the
 // supervisor), when that run arrives earlier and keeps the same invariant. A follower is
 // re-driven only in the sections where its planned run would bind; elsewhere it runs its planned
-// section. The whole run is scanned once more against the train ahead and a run that comes
+// section. A follower given a FollowerRecovery is driven back on time: wherever it is ready to
+// leave a stop late (or the wait makes it late), it runs the section the recovery chooses for
+// that departure (the late train's exact recovery re-applied at every stop, recovery/knock_on),
+// shortens its dwells down to the least dwell, and waits, again exactly, wherever that faster
+// run would close on the train ahead. The whole run is scanned once more against the train ahead and a run that comes
 // closer than the braking distance anywhere is an error (std::logic_error), never a result.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "dp/section_library.hpp"
@@ -31,8 +36,19 @@ struct FollowerRun {
   double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
   int sections_redriven = 0;    // sections run other than as planned
   std::vector<double> late_s;   // arrival lateness at each stop (0 at the first: departure)
+  double traction_J = 0.0;       // traction work at the wheel of the actual run, re-simulated
+  double plan_traction_J = 0.0;  // of its planned run
   SeparationScan planned_scan;  // the planned run against the train ahead
   SeparationScan scan;          // the actual run against the train ahead
+};
+
+// How a late follower is driven back on time. run(section, departure_s) is the run of that
+// section for a departure at departure_s on the clock (nullptr: on time, its planned run);
+// the pointer must stay valid for the whole drive_follower call. min_dwell_s[j] is the least
+// dwell at stop j (0 at the ends) when the train is late.
+struct FollowerRecovery {
+  std::function<const physics::SimulationResult*(std::size_t section, double departure_s)> run;
+  std::vector<double> min_dwell_s;
 };
 
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
@@ -40,7 +56,8 @@ struct FollowerRun {
 FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double braking_m_s2, int train,
-                           std::vector<CapEvent>* events);
+                           std::vector<CapEvent>* events,
+                           const FollowerRecovery* recovery = nullptr);
 
 // The least distance margin a scan may show and still count as kept: the sampled check meets
 // the braking distance to within a centimetre (the wait is rounded up by 0.05 s).
