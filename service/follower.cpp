@@ -76,18 +76,42 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
   for (std::size_t i = 0; i < n; ++i) {
     const double section_start = plan.trip.section_start_m(i);
     const double planned_arrival = planned.stop(i + 1).arrival_s;
-    const physics::SimulationResult* run = pick(i, start);
-    double departure = start;
-    for (int it = 0; it <= kFasterTries; ++it) {
-      const double w = clearance_wait_s(leader, *run, section_start, start, b, room);
-      if (start + w <= departure + 1e-9) break;
-      departure = start + rounded(w);
-      const physics::SimulationResult* faster = pick(i, departure);
-      if (faster == run) break;
-      run = faster;
+    // Candidates: the run for leaving when ready, then, while that run must wait, the run for
+    // leaving after the wait (faster, so it may need a longer wait), and the planned run with
+    // its own wait. Each leaves no earlier than its own least wait. The earliest arrival is
+    // driven (lateness first), the least energy among arrivals within kEarlierBy_s of it.
+    struct Candidate {
+      const physics::SimulationResult* run;
+      double departure_s;
+    };
+    std::vector<Candidate> candidates;
+    auto add = [&](const physics::SimulationResult* r) {
+      for (const Candidate& c : candidates)
+        if (c.run == r) return false;
+      const double w = clearance_wait_s(leader, *r, section_start, start, b, room);
+      candidates.push_back({r, w > 0.0 ? start + rounded(w) : start});
+      return true;
+    };
+    const physics::SimulationResult* tried = pick(i, start);
+    for (int it = 0; it <= kFasterTries && add(tried); ++it) {
+      if (candidates.back().departure_s <= start) break;
+      tried = pick(i, candidates.back().departure_s);
     }
-    const double w_final = clearance_wait_s(leader, *run, section_start, start, b, room);
-    if (start + w_final > departure + 1e-9) departure = start + rounded(w_final);
+    add(&plan.runs[i]);
+    double earliest = 1e300;
+    for (const Candidate& c : candidates)
+      earliest = std::min(earliest, c.departure_s + c.run->running_time_s);
+    const physics::SimulationResult* run = nullptr;
+    double departure = start, least_cost = 1e300;
+    for (const Candidate& c : candidates) {
+      if (c.departure_s + c.run->running_time_s > earliest + kEarlierBy_s) continue;
+      const double cost = c.run->energy.traction_work_J;
+      if (run == nullptr || cost < least_cost) {
+        run = c.run;
+        departure = c.departure_s;
+        least_cost = cost;
+      }
+    }
     const double wait = departure - start;
     if (wait > 0.0 || run != &plan.runs[i]) {
       ++out.sections_redriven;
