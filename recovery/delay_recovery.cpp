@@ -172,6 +172,10 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
 
   DelayRecoveryResult out = lay_out_and_follow(recovery);
   out.summary.recovery_mode = options.lateness_first ? "lateness-first" : "energy-first";
+  if (options.lateness_first) {
+    out.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;
+    out.summary.energy_first_total_lateness_s = out.summary.total_lateness_s;
+  }
   if (options.lateness_first && recoverable && count > 0) {
     // The late train's lateness at each stop before e is least flat out with least dwells (it
     // is late there even so), and it is on time at e for any time of the last section up to the

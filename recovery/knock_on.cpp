@@ -116,6 +116,11 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
                               : times.min_s[i];
       return &cache.get(i, t).sim;
     };
+    recover.run_in = [&](std::size_t i, double time_s) -> const physics::SimulationResult* {
+      const dp::FrontierCurve& c = library.frontier(i, store);
+      if (!(time_s >= times.min_s[i]) || time_s > c.t_max_s()) return nullptr;
+      return &cache.get(i, std::round(time_s * 1000.0) / 1000.0).sim;
+    };
     service::FollowerRun run = service::drive_follower(
         library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events,
         options.recover_followers ? &recover : nullptr);

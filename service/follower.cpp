@@ -98,9 +98,19 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
       tried = pick(i, candidates.back().departure_s);
     }
     add(&plan.runs[i]);
-    double earliest = 1e300;
-    for (const Candidate& c : candidates)
-      earliest = std::min(earliest, c.departure_s + c.run->running_time_s);
+    auto earliest_arrival = [&] {
+      double a = 1e300;
+      for (const Candidate& c : candidates) a = std::min(a, c.departure_s + c.run->running_time_s);
+      return a;
+    };
+    // Where the train ahead sets that arrival, leaving when ready and running slower for it
+    // costs less: tried too (it may need a wait of its own, and is then later).
+    double earliest = earliest_arrival();
+    if (recovery.run_in) {
+      const physics::SimulationResult* slower = recovery.run_in(i, earliest - start);
+      if (slower != nullptr && slower->running_time_s > kEarlierBy_s) add(slower);
+      earliest = earliest_arrival();
+    }
     const physics::SimulationResult* run = nullptr;
     double departure = start, least_cost = 1e300;
     for (const Candidate& c : candidates) {

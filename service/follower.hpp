@@ -45,9 +45,13 @@ struct FollowerRun {
 // How a late follower is driven back on time. run(section, departure_s) is the run of that
 // section for a departure at departure_s on the clock (nullptr: on time, its planned run);
 // the pointer must stay valid for the whole drive_follower call. min_dwell_s[j] is the least
-// dwell at stop j (0 at the ends) when the train is late.
+// dwell at stop j (0 at the ends) when the train is late. run_in(section, time_s) (may be empty)
+// is the energy-optimal run of the section in time_s (nullptr: no such run, e.g. beyond the
+// frontier); it lets the follower leave when ready and run slower where the train ahead sets
+// its arrival anyway.
 struct FollowerRecovery {
   std::function<const physics::SimulationResult*(std::size_t section, double departure_s)> run;
+  std::function<const physics::SimulationResult*(std::size_t section, double time_s)> run_in;
   std::vector<double> min_dwell_s;
 };
 
