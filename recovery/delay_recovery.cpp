@@ -24,6 +24,10 @@ bool DelayRecoveryOptions::IsValid(std::string* error) const {
     return fail("the flat-out threshold must lie in [0, 0.5] s");
   if (max_followers < 0 || max_followers > 1000)
     return fail("the followers driven at most (--followers) must lie in [0, 1000]");
+  if (!(follower_time_step_s >= 0.1 && follower_time_step_s <= 60.0))
+    return fail("the followers' running-time step must lie in [0.1, 60] s");
+  if (!(follower_slower_s >= 0.0 && follower_slower_s <= 600.0))
+    return fail("the followers' slower runs must lie in [0, 600] s above the plan");
   if (!allocation.IsValid(error)) return false;
   return service.IsValid(error);
 }
@@ -162,7 +166,7 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
       self.lateness_s[s.index + 1] = s.new_arrival_s - s.planned_arrival_s;
     out.trains.push_back(self);
     detail::follow_the_late_train(library, plan, train, station, delay_s, rt, options, cache,
-                                  store, out);
+                                  out);
     sm.total_lateness_s = 0.0;
     for (const AffectedTrain& a : out.trains)
       for (std::size_t j = 1; j < a.lateness_s.size(); ++j)

@@ -52,10 +52,14 @@ struct DelayRecoveryOptions {
   AllocationOptions allocation;
   bool check_followers = true;
   int max_followers = 5;  // followers simulated at most, behind the late train
-  // A held-up follower is driven back on time, by the late train's exact recovery re-applied
-  // at every stop where it leaves late (false: it waits, then runs its plan, faster only
-  // where the wait made it late in that section).
+  // A held-up follower is driven back on time (service::FollowerRecovery; false: it waits,
+  // then runs its plan, faster only where the wait made it late in that section).
   bool recover_followers = true;
+  // The runs a held-up follower chooses from on each section: energy-optimal runs for running
+  // times from flat out every follower_time_step_s up to follower_slower_s above the planned
+  // time (within the frontier), and the planned run.
+  double follower_time_step_s = 2.0;
+  double follower_slower_s = 10.0;
   // Lateness first: minimise the total arrival lateness of the late train and its followers,
   // then the energy (the late train flat out up to the last section before the station where
   // it is back on time, that section as slow as keeps the total lateness least). false: the

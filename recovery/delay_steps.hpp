@@ -80,7 +80,7 @@ double lay_out_runs(const dp::SectionLibrary& library, const Plan& plan, std::si
 void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, std::size_t train,
                            std::size_t station, double delay_s, const RecoveryTimes& recovery,
                            const DelayRecoveryOptions& options, RunCache& cache,
-                           dp::FrontierStore* store, DelayRecoveryResult& out);
+                           DelayRecoveryResult& out);
 
 // Lateness of a trip's arrivals against a train's plan, and where it is back on time: the
 // station after its last late arrival (none when it is late at the last station).

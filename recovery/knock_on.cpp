@@ -3,11 +3,11 @@
 // rather than leave into an occupied stretch, re-drives only the sections where its planned run
 // would come closer than the braking distance, and is checked against that invariant), and the
 // next train is driven behind its actual run in turn, until one is not held up. A held-up
-// follower is driven back on time (options.recover_followers): wherever it leaves a stop late,
-// it runs the section in the time the late train's exact recovery gives for that departure
-// (earliest station back on time by a flat-out run with least dwells, then the time split over
-// the frontiers), re-applied at every stop, so that it recovers as the late train does wherever
-// the train ahead lets it, and waits at the stop where it does not.
+// follower is driven back on time (options.recover_followers) by the dynamic programme of
+// service/follower.hpp over the energy-optimal runs of each section for running times from
+// flat out up to follower_slower_s above the planned time, every follower_time_step_s: back on
+// time at the earliest station, then least energy (or, lateness first, least total lateness,
+// then least energy), never closer than its braking distance.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,7 +40,7 @@ std::string two_decimals(double x) {
 void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, std::size_t train,
                            std::size_t station, double delay_s, const RecoveryTimes& recovery,
                            const DelayRecoveryOptions& options, RunCache& cache,
-                           dp::FrontierStore* store, DelayRecoveryResult& out) {
+                           DelayRecoveryResult& out) {
   DelayRecoverySummary& sm = out.summary;
   sm.min_follower_margin_kmh = std::numeric_limits<double>::quiet_NaN();
   const std::size_t n = plan.sections();
@@ -105,21 +105,17 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     const TrainTimes times = train_times(library, plan, f, options);
     service::FollowerRecovery recover;
     recover.min_dwell_s = times.min_dwell_s;
-    const TrainStops& fst = plan.trains[f];
-    recover.run = [&](std::size_t i, double departure_s) -> const physics::SimulationResult* {
-      const double late = departure_s - fst.departure_s[i];
-      if (late <= dp::kTimeTolerance_s) return nullptr;
-      const std::size_t e = earliest_station_back(fst, times, i, departure_s, late);
-      const double t = e <= n ? split_recovery_time(library, plan, f, times, i, e, departure_s,
-                                                    options, store)
-                                    .time_s[i]
-                              : times.min_s[i];
-      return &cache.get(i, t).sim;
-    };
-    recover.run_in = [&](std::size_t i, double time_s) -> const physics::SimulationResult* {
-      const dp::FrontierCurve& c = library.frontier(i, store);
-      if (!(time_s >= times.min_s[i]) || time_s > c.t_max_s()) return nullptr;
-      return &cache.get(i, std::round(time_s * 1000.0) / 1000.0).sim;
+    recover.lateness_first = options.lateness_first;
+    recover.runs = [&](std::size_t k) {
+      std::vector<const physics::SimulationResult*> runs;
+      const double top = times.planned_s[k] + options.follower_slower_s;
+      for (int j = 0;; ++j) {
+        const double t = times.min_s[k] + j * options.follower_time_step_s;
+        if (t >= top - 1e-6) break;
+        runs.push_back(&cache.get(k, std::round(t * 1000.0) / 1000.0).sim);
+      }
+      runs.push_back(&cache.get(k, std::round(top * 1000.0) / 1000.0).sim);
+      return runs;
     };
     service::FollowerRun run = service::drive_follower(
         library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events,

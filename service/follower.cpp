@@ -55,11 +55,28 @@ bool arrives(const physics::SimulationResult& sim) {
   return dp::run_arrives(sim) && !sim.stopped_early;
 }
 
-// The sections of a held-up follower given a recovery: at every stop it leaves when it is ready
-// (its planned departure, or its arrival plus the least dwell when late) and the line ahead is
-// clear for the run it drives, that run being the recovery's for the departure (its plan when
-// on time). A run chosen for a later departure is faster and may need a longer wait, so the two
-// are iterated; the run finally driven always leaves no earlier than its own least wait.
+// The clock time from which `run` (a section's run from rest, its own clock from 0) may leave
+// and keep gap >= v^2 / 2b behind the leader at every trace point and at the start: the least
+// departure, whatever the time the train is ready (the leader's position never decreases).
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double b, double room_m) {
+  double from = leader_clear_at(leader, section_start_m + room_m);
+  for (const physics::TracePoint& p : run.trace) {
+    const double ahead = section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
+    from = std::max(from, leader_clear_at(leader, ahead) - p.t_s);
+  }
+  return from;
+}
+
+// A held-up follower given a recovery: a dynamic programme over its stops. A state is the time
+// it is ready to leave a stop (its planned departure, or its arrival plus the least dwell when
+// late), the lateness so far and the energy so far; a move runs one of the section's candidate
+// runs, leaving when ready or after the least wait that keeps that run clear of the train ahead
+// (exact on the samples, rounded up as every wait is). Being ready earlier is never worse (the
+// follower could wait), so a state is dropped when another is ready no later with no more
+// lateness and no more energy: the programme is exact over the candidate runs. Objective:
+// back on time at the earliest station, then least energy; or, lateness first, the least sum of
+// arrival lateness, then least energy.
 void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
                       const physics::Trip& leader, const physics::Trip& planned, double b,
                       double room, int train, const FollowerRecovery& recovery,
@@ -67,98 +84,131 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
                       std::vector<double>& dwell_after, double& trip_departure,
                       FollowerRun& out, std::vector<CapEvent>* events) {
   const std::size_t n = library.size();
-  double start = trip_departure;
-  auto pick = [&](std::size_t i, double departure) {
-    const physics::SimulationResult* r = recovery.run(i, departure);
-    return r != nullptr ? r : &plan.runs[i];
+  constexpr double kLate_s = 0.05;  // later than this is late; lateness sums within it are tied
+  struct State {
+    double ready_s, lateness, energy_J;
+    int parent;                            // index in the previous stop's states
+    const physics::SimulationResult* run;  // the run that reached it
+    double departure_s;                    // of that run
   };
-  auto rounded = [](double w) { return std::ceil((w + kWaitMargin_s) * 100.0) / 100.0; };
-  for (std::size_t i = 0; i < n; ++i) {
-    const double section_start = plan.trip.section_start_m(i);
-    const double planned_arrival = planned.stop(i + 1).arrival_s;
-    // Candidates: the run for leaving when ready, then, while that run must wait, the run for
-    // leaving after the wait (faster, so it may need a longer wait), and the planned run with
-    // its own wait. Each leaves no earlier than its own least wait. The earliest arrival is
-    // driven (lateness first), the least energy among arrivals within kEarlierBy_s of it.
-    struct Candidate {
-      const physics::SimulationResult* run;
-      double departure_s;
-    };
-    std::vector<Candidate> candidates;
-    auto add = [&](const physics::SimulationResult* r) {
-      for (const Candidate& c : candidates)
-        if (c.run == r) return false;
-      const double w = clearance_wait_s(leader, *r, section_start, start, b, room);
-      candidates.push_back({r, w > 0.0 ? start + rounded(w) : start});
-      return true;
-    };
-    const physics::SimulationResult* tried = pick(i, start);
-    for (int it = 0; it <= kFasterTries && add(tried); ++it) {
-      if (candidates.back().departure_s <= start) break;
-      tried = pick(i, candidates.back().departure_s);
-    }
-    add(&plan.runs[i]);
-    auto earliest_arrival = [&] {
-      double a = 1e300;
-      for (const Candidate& c : candidates) a = std::min(a, c.departure_s + c.run->running_time_s);
-      return a;
-    };
-    // Where the train ahead sets that arrival, leaving when ready and running slower for it
-    // costs less: tried too (it may need a wait of its own, and is then later).
-    double earliest = earliest_arrival();
-    if (recovery.run_in) {
-      const physics::SimulationResult* slower = recovery.run_in(i, earliest - start);
-      if (slower != nullptr && slower->running_time_s > kEarlierBy_s) add(slower);
-      earliest = earliest_arrival();
-    }
-    const physics::SimulationResult* run = nullptr;
-    double departure = start, least_cost = 1e300;
-    for (const Candidate& c : candidates) {
-      if (c.departure_s + c.run->running_time_s > earliest + kEarlierBy_s) continue;
-      const double cost = c.run->energy.traction_work_J;
-      if (run == nullptr || cost < least_cost) {
-        run = c.run;
-        departure = c.departure_s;
-        least_cost = cost;
+  auto rounded_departure = [](double ready, double clear) {
+    if (clear <= ready) return ready;
+    return ready + std::ceil((clear - ready + kWaitMargin_s) * 100.0) / 100.0;
+  };
+  // The first section whose planned run, left at its planned departure, must wait: before it
+  // the follower runs its plan (it cannot leave earlier, and slower only makes it late).
+  std::size_t first = 0;
+  for (; first < n; ++first) {
+    const double dep = planned.stop(first).departure_s;
+    if (clear_from_s(leader, plan.runs[first], plan.trip.section_start_m(first), b, room) >
+        dep + 1e-9)
+      break;
+  }
+  std::vector<std::vector<State>> stages(n + 1);
+  stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure});
+  for (std::size_t k = 0; k < n; ++k) {
+    std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
+    if (k >= first && recovery.runs)
+      for (const physics::SimulationResult* r : recovery.runs(k))
+        if (r != nullptr && r != &plan.runs[k]) cands.push_back(r);
+    const double section_start = plan.trip.section_start_m(k);
+    std::vector<double> clear(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c)
+      clear[c] = clear_from_s(leader, *cands[c], section_start, b, room);
+    const double planned_arrival = planned.stop(k + 1).arrival_s;
+    const double least_dwell =
+        k + 1 < n ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
+                                                   ? recovery.min_dwell_s[k + 1]
+                                                   : plan.dwells_s[k])
+                  : 0.0;
+    std::vector<State> next;
+    for (std::size_t si = 0; si < stages[k].size(); ++si) {
+      const State& s = stages[k][si];
+      for (std::size_t c = 0; c < cands.size(); ++c) {
+        const double dep = rounded_departure(s.ready_s, clear[c]);
+        const double arr = dep + cands[c]->running_time_s;
+        const double late = arr - planned_arrival;
+        double lateness = s.lateness;
+        if (recovery.lateness_first)
+          lateness += std::max(0.0, late);
+        else if (late > kLate_s)
+          lateness = static_cast<double>(k + 1);  // the last late stop so far
+        const double ready =
+            k + 1 < n ? std::max(planned.stop(k + 1).departure_s, arr + least_dwell) : arr;
+        next.push_back({ready, lateness, s.energy_J + cands[c]->energy.traction_work_J,
+                        static_cast<int>(si), cands[c], dep});
       }
     }
-    const double wait = departure - start;
-    if (wait > 0.0 || run != &plan.runs[i]) {
+    // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
+    // sums, on ready the rounding of the waits.
+    std::sort(next.begin(), next.end(), [](const State& x, const State& y) {
+      if (x.ready_s != y.ready_s) return x.ready_s < y.ready_s;
+      if (x.lateness != y.lateness) return x.lateness < y.lateness;
+      return x.energy_J < y.energy_J;
+    });
+    std::vector<State> kept;
+    for (const State& s : next) {
+      bool dominated = false;
+      for (const State& q : kept)
+        if (q.ready_s <= s.ready_s + 1e-9 && q.lateness <= s.lateness + 1e-9 &&
+            q.energy_J <= s.energy_J + 1e-6) {
+          dominated = true;
+          break;
+        }
+      if (!dominated) kept.push_back(s);
+    }
+    stages[k + 1] = std::move(kept);
+  }
+  // The best final state: least lateness (sums within kLate_s tied), then least energy.
+  const std::vector<State>& final_states = stages[n];
+  double least = 1e300;
+  for (const State& s : final_states) least = std::min(least, s.lateness);
+  const double tie = recovery.lateness_first ? kLate_s : 0.5;
+  int best = -1;
+  for (std::size_t i = 0; i < final_states.size(); ++i)
+    if (final_states[i].lateness <= least + tie &&
+        (best < 0 || final_states[i].energy_J < final_states[static_cast<std::size_t>(best)].energy_J))
+      best = static_cast<int>(i);
+  // Back through the stages: the runs, the waits, the dwells.
+  std::vector<const State*> path(n + 1, nullptr);
+  for (std::size_t k = n; k > 0; --k) {
+    path[k] = &stages[k][static_cast<std::size_t>(best)];
+    best = path[k]->parent;
+  }
+  out.late_s.assign(n + 1, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const State& s = *path[k + 1];
+    const double ready = k == 0 ? trip_departure : path[k]->ready_s;
+    const double wait = s.departure_s - ready;
+    const double planned_arrival = planned.stop(k + 1).arrival_s;
+    if (wait > 0.0 || s.run != &plan.runs[k]) {
       ++out.sections_redriven;
       if (events != nullptr) {
         CapEvent ev;
         ev.train = train;
-        ev.section = static_cast<int>(i);
-        ev.planned_cost_J = library.engine(i).energy_cost_J(plan.runs[i]);
+        ev.section = static_cast<int>(k);
+        ev.planned_cost_J = library.engine(k).energy_cost_J(plan.runs[k]);
         ev.supervised_cost_J = NAN;
-        ev.reoptimised_cost_J = library.engine(i).energy_cost_J(*run);
+        ev.reoptimised_cost_J = library.engine(k).energy_cost_J(*s.run);
         ev.reoptimised_wait_s = wait;
         ev.station_wait_s = wait;
-        ev.waited_late_s = start + wait + plan.runs[i].running_time_s - planned_arrival;
-        ev.driven = run == &plan.runs[i] ? "waited" : wait > 0.0 ? "waited, then recovered"
-                                                                 : "recovered";
-        ev.late_s = departure + run->running_time_s - planned_arrival;
+        ev.waited_late_s = ready + wait + plan.runs[k].running_time_s - planned_arrival;
+        ev.driven = s.run == &plan.runs[k] ? "waited"
+                    : wait > 0.0           ? "waited, then recovered"
+                                           : "recovered";
+        ev.late_s = s.departure_s + s.run->running_time_s - planned_arrival;
         ev.reoptimised_late_s = ev.late_s;
         events->push_back(ev);
       }
     }
     out.station_wait_s += wait;
-    if (i == 0)
-      trip_departure = departure;
+    sims[k] = *s.run;
+    const double arrival = s.departure_s + s.run->running_time_s;
+    out.late_s[k + 1] = arrival - planned_arrival;
+    if (k == 0)
+      trip_departure = s.departure_s;
     else
-      dwell_after[i - 1] += wait;
-    sims[i] = *run;
-    const double arrival = departure + sims[i].running_time_s;
-    out.late_s[i + 1] = arrival - planned_arrival;
-    if (i + 1 < n) {
-      const double least_dwell =
-          std::min(plan.dwells_s[i], i + 1 < recovery.min_dwell_s.size()
-                                         ? recovery.min_dwell_s[i + 1]
-                                         : plan.dwells_s[i]);
-      const double next = std::max(planned.stop(i + 1).departure_s, arrival + least_dwell);
-      dwell_after[i] = next - arrival;
-      start = next;
-    }
+      dwell_after[k - 1] = s.departure_s - (path[k]->departure_s + path[k]->run->running_time_s);
   }
 }
 
@@ -193,7 +243,7 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   std::vector<double> dwell_after(n, 0.0);
   double trip_departure = departure_s, start = departure_s;
   out.late_s.assign(n + 1, 0.0);
-  const bool recovering = recovery != nullptr && static_cast<bool>(recovery->run);
+  const bool recovering = recovery != nullptr;
   if (recovering)
     drive_recovering(library, plan, leader, planned, b, room, train, *recovery, sims, dwell_after,
                      trip_departure, out, events);

@@ -12,11 +12,11 @@
 // for its planned arrival, dp/capped_section.hpp, or its planned control braked by the
 // supervisor), when that run arrives earlier and keeps the same invariant. A follower is
 // re-driven only in the sections where its planned run would bind; elsewhere it runs its planned
-// section. A follower given a FollowerRecovery is driven back on time: wherever it is ready to
-// leave a stop late (or the wait makes it late), it runs the section the recovery chooses for
-// that departure (the late train's exact recovery re-applied at every stop, recovery/knock_on),
-// shortens its dwells down to the least dwell, and waits, again exactly, wherever that faster
-// run would close on the train ahead. The whole run is scanned once more against the train ahead and a run that comes
+// section. A follower given a FollowerRecovery is driven back on time instead: a dynamic
+// programme over its stops chooses, section by section, one of the candidate runs (faster or
+// slower than planned), the least wait at each stop that keeps that run clear of the train
+// ahead, and dwells down to the least dwell when late; it is exact over the candidate runs
+// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is scanned once more against the train ahead and a run that comes
 // closer than the braking distance anywhere is an error (std::logic_error), never a result.
 #pragma once
 
@@ -42,17 +42,16 @@ struct FollowerRun {
   SeparationScan scan;          // the actual run against the train ahead
 };
 
-// How a late follower is driven back on time. run(section, departure_s) is the run of that
-// section for a departure at departure_s on the clock (nullptr: on time, its planned run);
-// the pointer must stay valid for the whole drive_follower call. min_dwell_s[j] is the least
-// dwell at stop j (0 at the ends) when the train is late. run_in(section, time_s) (may be empty)
-// is the energy-optimal run of the section in time_s (nullptr: no such run, e.g. beyond the
-// frontier); it lets the follower leave when ready and run slower where the train ahead sets
-// its arrival anyway.
+// How a held-up follower is driven back on time: runs(section) gives the runs it may drive on
+// that section besides its planned one (e.g. the energy-optimal runs for a grid of running
+// times; pointers valid for the whole drive_follower call), asked for the sections from the
+// first one where its planned run must wait; min_dwell_s[j] is the least dwell at stop j (0 at
+// the ends) when it is late. Objective: back on time at the earliest station, then the least
+// traction energy; lateness_first: the least sum of arrival lateness, then the least energy.
 struct FollowerRecovery {
-  std::function<const physics::SimulationResult*(std::size_t section, double departure_s)> run;
-  std::function<const physics::SimulationResult*(std::size_t section, double time_s)> run_in;
+  std::function<std::vector<const physics::SimulationResult*>(std::size_t section)> runs;
   std::vector<double> min_dwell_s;
+  bool lateness_first = false;
 };
 
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
