@@ -123,7 +123,7 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
 
   // 4 and 5 for one set of running times: every run solved, re-simulated and laid out on the
   // clock, the late train as an affected train, and its followers under the separation cap.
-  auto lay_out_and_follow = [&](const detail::RecoveryTimes& rt) {
+  auto lay_out_and_follow = [&](const detail::RecoveryTimes& rt, const DelayRecoveryOptions& opt) {
     DelayRecoveryResult out;
     DelayRecoverySummary& sm = out.summary;
     sm.train = static_cast<int>(train);
@@ -165,8 +165,7 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
     for (const RecoverySection& s : out.sections)
       self.lateness_s[s.index + 1] = s.new_arrival_s - s.planned_arrival_s;
     out.trains.push_back(self);
-    detail::follow_the_late_train(library, plan, train, station, delay_s, rt, options, cache,
-                                  out);
+    detail::follow_the_late_train(library, plan, train, station, delay_s, rt, opt, cache, out);
     sm.total_lateness_s = 0.0;
     for (const AffectedTrain& a : out.trains)
       for (std::size_t j = 1; j < a.lateness_s.size(); ++j)
@@ -174,11 +173,20 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
     return out;
   };
 
-  DelayRecoveryResult out = lay_out_and_follow(recovery);
+  // The energy-first recovery (its followers energy first too); in lateness-first mode it is
+  // reported beside the lateness-first one.
+  DelayRecoveryOptions energy_first = options;
+  energy_first.lateness_first = false;
+  DelayRecoveryResult out = lay_out_and_follow(recovery, energy_first);
   out.summary.recovery_mode = options.lateness_first ? "lateness-first" : "energy-first";
-  if (options.lateness_first) {
-    out.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;
-    out.summary.energy_first_total_lateness_s = out.summary.total_lateness_s;
+  if (options.lateness_first && !(recoverable && count > 0)) {
+    // Nothing to choose for the late train (flat out throughout, or not late): its followers
+    // lateness first.
+    DelayRecoveryResult lf = lay_out_and_follow(recovery, options);
+    lf.summary.recovery_mode = "lateness-first";
+    lf.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;
+    lf.summary.energy_first_total_lateness_s = out.summary.total_lateness_s;
+    out = std::move(lf);
   }
   if (options.lateness_first && recoverable && count > 0) {
     // The late train's lateness at each stop before e is least flat out with least dwells (it
@@ -202,15 +210,15 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
     };
     const double t_close = rule[k];
     double lo = times.min_s[k], hi = t_close;
-    DelayRecoveryResult fastest = lay_out_and_follow(with_last(lo));
-    DelayRecoveryResult best = lay_out_and_follow(with_last(hi));
+    DelayRecoveryResult fastest = lay_out_and_follow(with_last(lo), options);
+    DelayRecoveryResult best = lay_out_and_follow(with_last(hi), options);
     const double least = fastest.summary.total_lateness_s;
     int steps = 0;
     if (best.summary.total_lateness_s > least + kLatenessTie_s) {
       best = std::move(fastest);
       for (; steps < 8 && hi - lo > 0.1; ++steps) {
         const double mid = 0.5 * (lo + hi);
-        DelayRecoveryResult r = lay_out_and_follow(with_last(mid));
+        DelayRecoveryResult r = lay_out_and_follow(with_last(mid), options);
         if (r.summary.total_lateness_s <= least + kLatenessTie_s) {
           lo = mid;
           best = std::move(r);

@@ -122,8 +122,8 @@ struct FollowerCheck {
   double min_speed_margin_kmh = 0.0;
   double min_distance_margin_m = 0.0;  // gap less the braking distance, least
   double min_gap_m = 0.0;
-  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
-  double headway_s = 0.0;       // its planned departure after the train ahead's
+  double station_wait_s = 0.0;    // waited at stops for the line ahead to clear, in total
+  double headway_s = 0.0;         // its planned departure after the train ahead's
   double traction_kJ = 0.0;       // its actual run over the whole line, re-simulated
   double plan_traction_kJ = 0.0;  // its planned run
   double lateness_sum_s = 0.0;    // sum over its arrivals of the lateness (0 when on time)

@@ -81,8 +81,8 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
                       const physics::Trip& leader, const physics::Trip& planned, double b,
                       double room, int train, const FollowerRecovery& recovery,
                       std::vector<physics::SimulationResult>& sims,
-                      std::vector<double>& dwell_after, double& trip_departure,
-                      FollowerRun& out, std::vector<CapEvent>* events) {
+                      std::vector<double>& dwell_after, double& trip_departure, FollowerRun& out,
+                      std::vector<CapEvent>* events) {
   const std::size_t n = library.size();
   constexpr double kLate_s = 0.05;  // later than this is late; lateness sums within it are tied
   struct State {
@@ -116,11 +116,11 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     for (std::size_t c = 0; c < cands.size(); ++c)
       clear[c] = clear_from_s(leader, *cands[c], section_start, b, room);
     const double planned_arrival = planned.stop(k + 1).arrival_s;
-    const double least_dwell =
-        k + 1 < n ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
-                                                   ? recovery.min_dwell_s[k + 1]
-                                                   : plan.dwells_s[k])
-                  : 0.0;
+    const double least_dwell = k + 1 < n
+                                   ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
+                                                                    ? recovery.min_dwell_s[k + 1]
+                                                                    : plan.dwells_s[k])
+                                   : 0.0;
     std::vector<State> next;
     for (std::size_t si = 0; si < stages[k].size(); ++si) {
       const State& s = stages[k][si];
@@ -167,7 +167,8 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
   int best = -1;
   for (std::size_t i = 0; i < final_states.size(); ++i)
     if (final_states[i].lateness <= least + tie &&
-        (best < 0 || final_states[i].energy_J < final_states[static_cast<std::size_t>(best)].energy_J))
+        (best < 0 ||
+         final_states[i].energy_J < final_states[static_cast<std::size_t>(best)].energy_J))
       best = static_cast<int>(i);
   // Back through the stages: the runs, the waits, the dwells.
   std::vector<const State*> path(n + 1, nullptr);
@@ -231,7 +232,8 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   out.planned_scan = scan_separation(leader, planned, b, options.separation);
   const SeparationScan& before = out.planned_scan;
   out.held_up = before.exceeded || before.min_distance_margin_m < 0.0 || before.min_gap_m < 0.0;
-  for (const physics::SimulationResult& r : plan.runs) out.plan_traction_J += r.energy.traction_work_J;
+  for (const physics::SimulationResult& r : plan.runs)
+    out.plan_traction_J += r.energy.traction_work_J;
   if (!out.held_up) {
     out.traction_J = out.plan_traction_J;
     out.trip = planned;

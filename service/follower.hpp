@@ -16,8 +16,9 @@
 // programme over its stops chooses, section by section, one of the candidate runs (faster or
 // slower than planned), the least wait at each stop that keeps that run clear of the train
 // ahead, and dwells down to the least dwell when late; it is exact over the candidate runs
-// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is scanned once more against the train ahead and a run that comes
-// closer than the braking distance anywhere is an error (std::logic_error), never a result.
+// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is
+// scanned once more against the train ahead and a run that comes closer than the braking distance
+// anywhere is an error (std::logic_error), never a result.
 #pragma once
 
 #include <functional>
@@ -31,15 +32,15 @@
 namespace ecorail::service {
 
 struct FollowerRun {
-  physics::Trip trip;           // the actual run, on the clock
-  bool held_up = false;         // its planned run would come closer than the braking distance
-  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
-  int sections_redriven = 0;    // sections run other than as planned
-  std::vector<double> late_s;   // arrival lateness at each stop (0 at the first: departure)
+  physics::Trip trip;            // the actual run, on the clock
+  bool held_up = false;          // its planned run would come closer than the braking distance
+  double station_wait_s = 0.0;   // waited at stops for the line ahead to clear, in total
+  int sections_redriven = 0;     // sections run other than as planned
+  std::vector<double> late_s;    // arrival lateness at each stop (0 at the first: departure)
   double traction_J = 0.0;       // traction work at the wheel of the actual run, re-simulated
   double plan_traction_J = 0.0;  // of its planned run
-  SeparationScan planned_scan;  // the planned run against the train ahead
-  SeparationScan scan;          // the actual run against the train ahead
+  SeparationScan planned_scan;   // the planned run against the train ahead
+  SeparationScan scan;           // the actual run against the train ahead
 };
 
 // How a held-up follower is driven back on time: runs(section) gives the runs it may drive on

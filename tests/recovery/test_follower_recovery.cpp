@@ -38,8 +38,8 @@ double least_wait_s(const physics::Trip& leader, const physics::SimulationResult
   };
   double need = clear_at(section_start_m) - ready_s;
   for (const physics::TracePoint& p : run.trace)
-    need = std::max(need, clear_at(section_start_m + p.s_m + p.v_ms * p.v_ms / (2.0 * b)) -
-                              (ready_s + p.t_s));
+    need = std::max(
+        need, clear_at(section_start_m + p.s_m + p.v_ms * p.v_ms / (2.0 * b)) - (ready_s + p.t_s));
   return std::max(0.0, need);
 }
 
@@ -62,9 +62,8 @@ std::vector<Leaf> brute_force(const Plan& plan, std::size_t f, const physics::Tr
     runs[k].push_back(lib.min_time_run(k));
     const double top = plan.running_time_s(f, k) + slower;
     for (int j = 1; lib.min_time_s(k) + step * j < top - 1e-6; ++j)
-      runs[k].push_back(
-          lib.solve(k, std::round((lib.min_time_s(k) + step * j) * 1000.0) / 1000.0)
-              .search.run.sim);
+      runs[k].push_back(lib.solve(k, std::round((lib.min_time_s(k) + step * j) * 1000.0) / 1000.0)
+                            .search.run.sim);
     runs[k].push_back(lib.solve(k, std::round(top * 1000.0) / 1000.0).search.run.sim);
     runs[k].push_back(lib.solve(k, plan.running_time_s(f, k)).search.run.sim);
     if (k > 0) starts[k] = starts[k - 1] + lib.route(k - 1).length_m();
