@@ -106,15 +106,23 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     service::FollowerRecovery recover;
     recover.min_dwell_s = times.min_dwell_s;
     recover.lateness_first = options.lateness_first;
-    recover.runs = [&](std::size_t k) {
-      std::vector<const physics::SimulationResult*> runs;
-      const double top = times.planned_s[k] + options.follower_slower_s;
-      for (int j = 0;; ++j) {
-        const double t = times.min_s[k] + j * options.follower_time_step_s;
-        if (t >= top - 1e-6) break;
-        runs.push_back(&cache.get(k, std::round(t * 1000.0) / 1000.0).sim);
+    recover.runs = [&](std::size_t first) {
+      std::vector<std::vector<double>> grid(n);
+      for (std::size_t k = first; k < n; ++k) {
+        const double top = times.planned_s[k] + options.follower_slower_s;
+        for (int j = 0;; ++j) {
+          const double t = times.min_s[k] + j * options.follower_time_step_s;
+          if (t >= top - 1e-6) break;
+          grid[k].push_back(std::round(t * 1000.0) / 1000.0);
+        }
+        grid[k].push_back(std::round(top * 1000.0) / 1000.0);
       }
-      runs.push_back(&cache.get(k, std::round(top * 1000.0) / 1000.0).sim);
+      cache.prefetch(grid);
+      std::vector<std::vector<const physics::SimulationResult*>> runs;
+      for (std::size_t k = first; k < n; ++k) {
+        runs.emplace_back();
+        for (double t : grid[k]) runs.back().push_back(&cache.get(k, t).sim);
+      }
       return runs;
     };
     service::FollowerRun run = service::drive_follower(

@@ -104,12 +104,14 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
         dep + 1e-9)
       break;
   }
+  std::vector<std::vector<const physics::SimulationResult*>> extra;
+  if (first < n && recovery.runs) extra = recovery.runs(first);
   std::vector<std::vector<State>> stages(n + 1);
   stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure});
   for (std::size_t k = 0; k < n; ++k) {
     std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
-    if (k >= first && recovery.runs)
-      for (const physics::SimulationResult* r : recovery.runs(k))
+    if (k >= first && k - first < extra.size())
+      for (const physics::SimulationResult* r : extra[k - first])
         if (r != nullptr && r != &plan.runs[k]) cands.push_back(r);
     const double section_start = plan.trip.section_start_m(k);
     std::vector<double> clear(cands.size());

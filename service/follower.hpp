@@ -43,14 +43,15 @@ struct FollowerRun {
   SeparationScan scan;           // the actual run against the train ahead
 };
 
-// How a held-up follower is driven back on time: runs(section) gives the runs it may drive on
-// that section besides its planned one (e.g. the energy-optimal runs for a grid of running
-// times; pointers valid for the whole drive_follower call), asked for the sections from the
-// first one where its planned run must wait; min_dwell_s[j] is the least dwell at stop j (0 at
-// the ends) when it is late. Objective: back on time at the earliest station, then the least
-// traction energy; lateness_first: the least sum of arrival lateness, then the least energy.
+// How a held-up follower is driven back on time: runs(first) gives, for every section from
+// `first` (the first one where its planned run must wait) to the last, the runs it may drive
+// there besides its planned one (e.g. the energy-optimal runs for a grid of running times;
+// one list per section, index 0 for `first`; pointers valid for the whole drive_follower call);
+// min_dwell_s[j] is the least dwell at stop j (0 at the ends) when it is late. Objective: back on
+// time at the earliest station, then the least traction energy; lateness_first: the least sum of
+// arrival lateness, then the least energy.
 struct FollowerRecovery {
-  std::function<std::vector<const physics::SimulationResult*>(std::size_t section)> runs;
+  std::function<std::vector<std::vector<const physics::SimulationResult*>>(std::size_t first)> runs;
   std::vector<double> min_dwell_s;
   bool lateness_first = false;
 };
