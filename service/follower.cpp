@@ -75,8 +75,9 @@ double clear_from_s(const physics::Trip& leader, const physics::SimulationResult
 // (exact on the samples, rounded up as every wait is). Being ready earlier is never worse (the
 // follower could wait), so a state is dropped when another is ready no later with no more
 // lateness and no more energy: the programme is exact over the candidate runs. Objective:
-// back on time at the earliest station, then least energy; or, lateness first, the least sum of
-// arrival lateness, then least energy.
+// back on time at the earliest station, then the least final lateness (when it cannot be back
+// on time by the last stop), then least energy; or, lateness first, the least sum of arrival
+// lateness, then least energy.
 void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
                       const physics::Trip& leader, const physics::Trip& planned, double b,
                       double room, int train, const FollowerRecovery& recovery,
@@ -161,17 +162,27 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     }
     stages[k + 1] = std::move(kept);
   }
-  // The best final state: least lateness (sums within kLate_s tied), then least energy.
+  // The best final state. Lateness first: the least lateness sum (sums within kLate_s tied),
+  // then the least energy. Otherwise: back on time at the earliest station, then (when it is
+  // late at the last stop whatever it does) the least final lateness, within kLate_s, as the
+  // late train runs flat out when no station absorbs its delay, then the least energy.
   const std::vector<State>& final_states = stages[n];
+  const double last_planned = planned.stop(n).arrival_s;
   double least = 1e300;
   for (const State& s : final_states) least = std::min(least, s.lateness);
   const double tie = recovery.lateness_first ? kLate_s : 0.5;
+  double least_final = 1e300;
+  for (const State& s : final_states)
+    if (s.lateness <= least + tie) least_final = std::min(least_final, s.ready_s - last_planned);
   int best = -1;
-  for (std::size_t i = 0; i < final_states.size(); ++i)
-    if (final_states[i].lateness <= least + tie &&
-        (best < 0 ||
-         final_states[i].energy_J < final_states[static_cast<std::size_t>(best)].energy_J))
+  for (std::size_t i = 0; i < final_states.size(); ++i) {
+    const State& s = final_states[i];
+    if (s.lateness > least + tie) continue;
+    if (!recovery.lateness_first && s.ready_s - last_planned > std::max(least_final, 0.0) + kLate_s)
+      continue;
+    if (best < 0 || s.energy_J < final_states[static_cast<std::size_t>(best)].energy_J)
       best = static_cast<int>(i);
+  }
   // Back through the stages: the runs, the waits, the dwells.
   std::vector<const State*> path(n + 1, nullptr);
   for (std::size_t k = n; k > 0; --k) {

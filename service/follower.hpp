@@ -48,8 +48,9 @@ struct FollowerRun {
 // there besides its planned one (e.g. the energy-optimal runs for a grid of running times;
 // one list per section, index 0 for `first`; pointers valid for the whole drive_follower call);
 // min_dwell_s[j] is the least dwell at stop j (0 at the ends) when it is late. Objective: back on
-// time at the earliest station, then the least traction energy; lateness_first: the least sum of
-// arrival lateness, then the least energy.
+// time at the earliest station, then (when no station is reached on time) the least final
+// lateness, then the least traction energy; lateness_first: the least sum of arrival lateness,
+// then the least energy.
 struct FollowerRecovery {
   std::function<std::vector<std::vector<const physics::SimulationResult*>>(std::size_t first)> runs;
   std::vector<double> min_dwell_s;

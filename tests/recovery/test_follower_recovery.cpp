@@ -44,8 +44,9 @@ double least_wait_s(const physics::Trip& leader, const physics::SimulationResult
 }
 
 struct Leaf {
-  int back_at = 0;              // station index where back on time (after the last late arrival)
-  double lateness_sum_s = 0.0;  // sum of arrival lateness
+  int back_at = 0;                // station index where back on time (after the last late arrival)
+  double lateness_sum_s = 0.0;    // sum of arrival lateness
+  double final_lateness_s = 0.0;  // at the last stop
   double energy_J = 0.0;
 };
 
@@ -75,6 +76,7 @@ std::vector<Leaf> brute_force(const Plan& plan, std::size_t f, const physics::Tr
     if (k == n) {
       Leaf leaf;
       leaf.energy_J = energy;
+      leaf.final_lateness_s = late[n];
       for (std::size_t j = 1; j <= n; ++j) {
         if (late[j] > kLate_s) leaf.back_at = static_cast<int>(j) + 1;
         leaf.lateness_sum_s += std::max(0.0, late[j]);
@@ -134,8 +136,14 @@ TEST(FollowerRecovery, AHeldUpFollowerIsTheOptimumOfABruteForceOverItsRunningTim
     double least = 1e300, best_energy = 1e300;
     for (const Leaf& l : leaves)
       least = std::min(least, c.lateness_first ? l.lateness_sum_s : l.back_at);
+    // Energy first: back on time earliest, then the least final lateness, then least energy.
+    double least_final = 1e300;
     for (const Leaf& l : leaves)
-      if ((c.lateness_first ? l.lateness_sum_s <= least + kLate_s : l.back_at == least))
+      if (l.back_at == least) least_final = std::min(least_final, l.final_lateness_s);
+    for (const Leaf& l : leaves)
+      if (c.lateness_first
+              ? l.lateness_sum_s <= least + kLate_s
+              : l.back_at == least && l.final_lateness_s <= std::max(least_final, 0.0) + kLate_s)
         best_energy = std::min(best_energy, l.energy_J);
     const FollowerCheck& f = r.followers[0];
     if (c.lateness_first)
