@@ -91,6 +91,7 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     int parent;                            // index in the previous stop's states
     const physics::SimulationResult* run;  // the run that reached it
     double departure_s;                    // of that run
+    double line_wait_s;                    // of the wait before it, for the line ahead
   };
   auto rounded_departure = [](double ready, double clear) {
     if (clear <= ready) return ready;
@@ -108,7 +109,7 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
   std::vector<std::vector<const physics::SimulationResult*>> extra;
   if (first < n && recovery.runs) extra = recovery.runs(first);
   std::vector<std::vector<State>> stages(n + 1);
-  stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure});
+  stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure, 0.0});
   for (std::size_t k = 0; k < n; ++k) {
     std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
     if (k >= first && k - first < extra.size())
@@ -128,7 +129,10 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     for (std::size_t si = 0; si < stages[k].size(); ++si) {
       const State& s = stages[k][si];
       for (std::size_t c = 0; c < cands.size(); ++c) {
-        const double dep = rounded_departure(s.ready_s, clear[c]);
+        const double clear_dep = rounded_departure(s.ready_s, clear[c]);
+        // Never arriving before the timetable: a run that would leaves later (waiting longer
+        // at the stop is always clear, the leader's position never decreases).
+        const double dep = std::max(clear_dep, planned_arrival - cands[c]->running_time_s);
         const double arr = dep + cands[c]->running_time_s;
         const double late = arr - planned_arrival;
         double lateness = s.lateness;
@@ -139,7 +143,7 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
         const double ready =
             k + 1 < n ? std::max(planned.stop(k + 1).departure_s, arr + least_dwell) : arr;
         next.push_back({ready, lateness, s.energy_J + cands[c]->energy.traction_work_J,
-                        static_cast<int>(si), cands[c], dep});
+                        static_cast<int>(si), cands[c], dep, clear_dep - s.ready_s});
       }
     }
     // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
@@ -193,7 +197,7 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
   for (std::size_t k = 0; k < n; ++k) {
     const State& s = *path[k + 1];
     const double ready = k == 0 ? trip_departure : path[k]->ready_s;
-    const double wait = s.departure_s - ready;
+    const double wait = s.line_wait_s;  // for the line ahead (the rest, for the timetable)
     const double planned_arrival = planned.stop(k + 1).arrival_s;
     if (wait > 0.0 || s.run != &plan.runs[k]) {
       ++out.sections_redriven;
