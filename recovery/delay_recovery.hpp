@@ -14,9 +14,11 @@
 // dwells to the last station and the final lateness reported (recovered = false). Every energy
 // and time reported is a forward re-simulation. Followers: the next train's planned run is
 // scanned against the late train's actual run under the separation cap (service/separation.hpp);
-// when the cap would be exceeded the follower is driven behind it (service::run_follower,
-// re-optimised under the cap for its planned arrivals) and checked in turn, and the chain stops
-// at the first train that is not held up.
+// when it would come closer than its braking distance the follower is driven behind it, back on
+// time by the dynamic programme of service/follower.hpp over a grid of its section runs (waiting
+// at a stop where the line ahead is not clear), and checked in turn; the chain stops at the first
+// train that is not held up. Lateness first (DelayRecoveryOptions::lateness_first) puts the total
+// lateness of the late train and its followers before the energy.
 #pragma once
 
 #include <limits>
