@@ -53,7 +53,17 @@ std::string DelayRecoverySummary::BriefReport() const {
                   sections == 1 ? "" : "s", recovery_energy_kJ, plan_energy_kJ, followers_checked,
                   followers_checked == 1 ? "" : "s", followers_affected, wall_s,
                   std::string(dp::status_word(termination, warnings.size())).c_str());
-  return std::string(buf) + "\n";
+  std::string out = buf;
+  if (recovery_mode == "lateness-first") {
+    char lf[300];
+    std::snprintf(lf, sizeof lf,
+                  "\n  lateness first: total lateness of the late train and its followers %.2f s, "
+                  "traction %.1f kJ (energy first: %.2f s, %.1f kJ)",
+                  total_lateness_s, recovery_energy_kJ, energy_first_total_lateness_s,
+                  energy_first_energy_kJ);
+    out += lf;
+  }
+  return out + "\n";
 }
 
 std::string DelayRecoverySummary::FullReport() const {
