@@ -44,6 +44,8 @@ struct DelayArgs {
   double delay_s = std::nan("");
   double min_dwell_s = 30.0;
   int followers = 5;
+  bool lateness_first = false;
+  bool followers_wait = false;
   double frontier_span_s = 60.0;
   std::string cache_dir;
   bool no_cache = false;
@@ -112,6 +114,8 @@ void run_delay(const DelayArgs& a) {
   options.min_dwell_s = a.min_dwell_s;
   options.max_followers = a.followers;
   options.check_followers = a.followers > 0;
+  options.lateness_first = a.lateness_first;
+  options.recover_followers = !a.followers_wait;
   require_valid(options);
   const Problem p = load_fleet_problem(a.problem, "--train-file");
   // The plan first: a bad file fails before any engine is built.
@@ -196,6 +200,10 @@ void add_delay_command(CLI::App& app) {
   cmd->add_option("--followers", args->followers,
                   "followers checked for separation at most (0: none)")
       ->capture_default_str();
+  cmd->add_flag("--lateness-first", args->lateness_first,
+                "least total lateness of the late train and its followers first, then energy");
+  cmd->add_flag("--followers-wait", args->followers_wait,
+                "held-up followers only wait and run their plan (not driven back on time)");
   add_plan_engine_options(cmd, args->problem, args->frontier_span_s, args->cache_dir,
                           args->no_cache);
   cmd->add_flag("--full-report", args->full_report, "print the full report");

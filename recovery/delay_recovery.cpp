@@ -24,6 +24,10 @@ bool DelayRecoveryOptions::IsValid(std::string* error) const {
     return fail("the flat-out threshold must lie in [0, 0.5] s");
   if (max_followers < 0 || max_followers > 1000)
     return fail("the followers driven at most (--followers) must lie in [0, 1000]");
+  if (!(follower_time_step_s >= 0.1 && follower_time_step_s <= 60.0))
+    return fail("the followers' running-time step must lie in [0.1, 60] s");
+  if (!(follower_slower_s >= 0.0 && follower_slower_s <= 600.0))
+    return fail("the followers' slower runs must lie in [0, 600] s above the plan");
   if (!allocation.IsValid(error)) return false;
   return service.IsValid(error);
 }
@@ -49,7 +53,17 @@ std::string DelayRecoverySummary::BriefReport() const {
                   sections == 1 ? "" : "s", recovery_energy_kJ, plan_energy_kJ, followers_checked,
                   followers_checked == 1 ? "" : "s", followers_affected, wall_s,
                   std::string(dp::status_word(termination, warnings.size())).c_str());
-  return std::string(buf) + "\n";
+  std::string out = buf;
+  if (recovery_mode == "lateness-first") {
+    char lf[300];
+    std::snprintf(lf, sizeof lf,
+                  "\n  lateness first: total lateness of the late train and its followers %.2f s, "
+                  "traction %.1f kJ (energy first: %.2f s, %.1f kJ)",
+                  total_lateness_s, recovery_energy_kJ, energy_first_total_lateness_s,
+                  energy_first_energy_kJ);
+    out += lf;
+  }
+  return out + "\n";
 }
 
 std::string DelayRecoverySummary::FullReport() const {
@@ -104,11 +118,6 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
   const TrainStops& st = plan.trains[train];
   const detail::TrainTimes times = detail::train_times(library, plan, train, options);
 
-  DelayRecoveryResult out;
-  DelayRecoverySummary& sm = out.summary;
-  sm.train = static_cast<int>(train);
-  sm.station = plan.stations[station];
-  sm.delay_s = delay_s;
   const double late_departure = st.departure_s[station] + delay_s;
 
   dp::report_progress(options.progress, "recovery", 0, 1);
@@ -120,51 +129,130 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
   // 2. New running times: exact allocation over the frontiers (or flat out).
   const detail::RecoveryTimes recovery = detail::split_recovery_time(
       library, plan, train, times, station, e, late_departure, options, store);
-  out.allocation = recovery.allocation;
-  for (const std::string& w : recovery.warnings) sm.warnings.push_back(w);
   // 3. The rule: flat out until the delay is gone, the last section in the time that closes it.
   const std::vector<double> rule = detail::rule_times(st, times, station, last, late_departure);
-  // 4. Solve and re-simulate every run; lay them out on the clock.
   detail::RunCache cache(library, options.flat_out_threshold_s);
-  const double arrival = detail::lay_out_runs(library, plan, train, times, station, last,
-                                              late_departure, recovery, rule, cache, out);
-  sm.sections = static_cast<int>(count);
-  sm.recovered = recoverable;
-  const double final_late = count > 0 ? arrival - st.arrival_s[last] : 0.0;
-  if (recoverable) {
-    sm.back_on_time_at = plan.stations[e];
-    sm.final_lateness_s = std::max(0.0, final_late);
-    if (final_late > options.on_time_tolerance_s) {
+
+  // 4 and 5 for one set of running times: every run solved, re-simulated and laid out on the
+  // clock, the late train as an affected train, and its followers under the separation cap.
+  auto lay_out_and_follow = [&](const detail::RecoveryTimes& rt, const DelayRecoveryOptions& opt) {
+    DelayRecoveryResult out;
+    DelayRecoverySummary& sm = out.summary;
+    sm.train = static_cast<int>(train);
+    sm.station = plan.stations[station];
+    sm.delay_s = delay_s;
+    out.allocation = rt.allocation;
+    for (const std::string& w : rt.warnings) sm.warnings.push_back(w);
+    const double arrival = detail::lay_out_runs(library, plan, train, times, station, last,
+                                                late_departure, rt, rule, cache, out);
+    sm.sections = static_cast<int>(count);
+    sm.recovered = recoverable;
+    const double final_late = count > 0 ? arrival - st.arrival_s[last] : 0.0;
+    if (recoverable) {
+      sm.back_on_time_at = plan.stations[e];
+      sm.final_lateness_s = std::max(0.0, final_late);
+      if (final_late > options.on_time_tolerance_s) {
+        char buf[300];
+        std::snprintf(buf, sizeof buf,
+                      "the re-simulated recovery arrives at %s %.3f s after the plan (tolerance "
+                      "%.3f s); nothing is reported",
+                      sm.back_on_time_at.c_str(), final_late, options.on_time_tolerance_s);
+        throw std::runtime_error(buf);
+      }
+    } else {
+      sm.final_lateness_s = final_late;
       char buf[300];
       std::snprintf(buf, sizeof buf,
-                    "the re-simulated recovery arrives at %s %.3f s after the plan (tolerance "
-                    "%.3f s); nothing is reported",
-                    sm.back_on_time_at.c_str(), final_late, options.on_time_tolerance_s);
-      throw std::runtime_error(buf);
+                    "a delay of %.2f s at %s cannot be recovered by %s: every section runs flat "
+                    "out and every dwell is at its minimum, and the train arrives %.2f s late",
+                    delay_s, sm.station.c_str(), plan.stations.back().c_str(), final_late);
+      sm.warnings.push_back(buf);
     }
-  } else {
-    sm.final_lateness_s = final_late;
+    AffectedTrain self;
+    self.train = static_cast<int>(train);
+    self.back_on_time_at = sm.back_on_time_at;
+    self.final_lateness_s = sm.final_lateness_s;
+    self.max_lateness_s = delay_s;
+    self.lateness_s.assign(n + 1, 0.0);
+    for (const RecoverySection& s : out.sections)
+      self.lateness_s[s.index + 1] = s.new_arrival_s - s.planned_arrival_s;
+    out.trains.push_back(self);
+    detail::follow_the_late_train(library, plan, train, station, delay_s, rt, opt, cache, out);
+    sm.total_lateness_s = 0.0;
+    for (const AffectedTrain& a : out.trains)
+      for (std::size_t j = 1; j < a.lateness_s.size(); ++j)
+        sm.total_lateness_s += std::max(0.0, a.lateness_s[j]);
+    return out;
+  };
+
+  // The energy-first recovery (its followers energy first too); in lateness-first mode it is
+  // reported beside the lateness-first one.
+  DelayRecoveryOptions energy_first = options;
+  energy_first.lateness_first = false;
+  DelayRecoveryResult out = lay_out_and_follow(recovery, energy_first);
+  out.summary.recovery_mode = options.lateness_first ? "lateness-first" : "energy-first";
+  if (options.lateness_first && !(recoverable && count > 0)) {
+    // Nothing to choose for the late train (flat out throughout, or not late): its followers
+    // lateness first.
+    DelayRecoveryResult lf = lay_out_and_follow(recovery, options);
+    lf.summary.recovery_mode = "lateness-first";
+    lf.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;
+    lf.summary.energy_first_total_lateness_s = out.summary.total_lateness_s;
+    out = std::move(lf);
+  }
+  if (options.lateness_first && recoverable && count > 0) {
+    // The late train's lateness at each stop before e is least flat out with least dwells (it
+    // is late there even so), and it is on time at e for any time of the last section up to the
+    // rule's, which closes the delay exactly: the family below holds every run of least
+    // lateness for the late train. The followers' least lateness is taken at the flat-out end
+    // (the late train then clears every stretch earliest); the last section is given the
+    // longest time (least energy) that keeps the total lateness within kLatenessTie_s of it,
+    // by bisection on its time (the rule's time when that already does).
+    constexpr double kLatenessTie_s = 0.05;
+    const std::size_t k = e - 1;
+    auto with_last = [&](double t) {
+      detail::RecoveryTimes rt;
+      rt.time_s = rule;
+      rt.marginal_J_per_s.assign(n, std::numeric_limits<double>::infinity());
+      for (std::size_t j = station; j < k; ++j) rt.time_s[j] = times.min_s[j];
+      rt.time_s[k] = t;
+      if (t > times.min_s[k] + options.flat_out_threshold_s)
+        rt.marginal_J_per_s[k] = library.frontier(k, store).marginal_at(t);
+      return rt;
+    };
+    const double t_close = rule[k];
+    double lo = times.min_s[k], hi = t_close;
+    DelayRecoveryResult fastest = lay_out_and_follow(with_last(lo), options);
+    DelayRecoveryResult best = lay_out_and_follow(with_last(hi), options);
+    const double least = fastest.summary.total_lateness_s;
+    int steps = 0;
+    if (best.summary.total_lateness_s > least + kLatenessTie_s) {
+      best = std::move(fastest);
+      for (; steps < 8 && hi - lo > 0.1; ++steps) {
+        const double mid = 0.5 * (lo + hi);
+        DelayRecoveryResult r = lay_out_and_follow(with_last(mid), options);
+        if (r.summary.total_lateness_s <= least + kLatenessTie_s) {
+          lo = mid;
+          best = std::move(r);
+        } else {
+          hi = mid;
+        }
+      }
+    }
+    best.summary.recovery_mode = "lateness-first";
+    best.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;
+    best.summary.energy_first_total_lateness_s = out.summary.total_lateness_s;
     char buf[300];
     std::snprintf(buf, sizeof buf,
-                  "a delay of %.2f s at %s cannot be recovered by %s: every section runs flat out "
-                  "and every dwell is at its minimum, and the train arrives %.2f s late",
-                  delay_s, sm.station.c_str(), plan.stations.back().c_str(), final_late);
-    sm.warnings.push_back(buf);
+                  "lateness first: %s -> %s in %.2f s (flat out %.2f s, the rule %.2f s) after "
+                  "%d bisection step(s)",
+                  plan.stations[k].c_str(), plan.stations[k + 1].c_str(),
+                  best.sections.back().new_time_s, times.min_s[k], t_close, steps);
+    best.allocation.message = buf;
+    out = std::move(best);
   }
-
+  DelayRecoverySummary& sm = out.summary;
   dp::report_progress(options.progress, "recovery", 1, 1);
-  // 5. The late train as an affected train, and the followers under the separation cap.
-  AffectedTrain self;
-  self.train = static_cast<int>(train);
-  self.back_on_time_at = sm.back_on_time_at;
-  self.final_lateness_s = sm.final_lateness_s;
-  self.max_lateness_s = delay_s;
-  self.lateness_s.assign(n + 1, 0.0);
-  for (const RecoverySection& s : out.sections)
-    self.lateness_s[s.index + 1] = s.new_arrival_s - s.planned_arrival_s;
-  out.trains.push_back(self);
-  detail::follow_the_late_train(library, plan, train, station, delay_s, recovery, options, cache,
-                                out);
   // A follower never on the line with the train ahead has no margin to speak of: infinite.
   for (FollowerCheck& f : out.followers)
     for (double* v : {&f.planned_run_margin_kmh, &f.plan_margin_kmh, &f.min_speed_margin_kmh,

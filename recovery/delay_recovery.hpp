@@ -14,11 +14,14 @@
 // dwells to the last station and the final lateness reported (recovered = false). Every energy
 // and time reported is a forward re-simulation. Followers: the next train's planned run is
 // scanned against the late train's actual run under the separation cap (service/separation.hpp);
-// when the cap would be exceeded the follower is driven behind it (service::run_follower,
-// re-optimised under the cap for its planned arrivals) and checked in turn, and the chain stops
-// at the first train that is not held up.
+// when it would come closer than its braking distance the follower is driven behind it, back on
+// time by the dynamic programme of service/follower.hpp over a grid of its section runs (waiting
+// at a stop where the line ahead is not clear), and checked in turn; the chain stops at the first
+// train that is not held up. Lateness first (DelayRecoveryOptions::lateness_first) puts the total
+// lateness of the late train and its followers before the energy.
 #pragma once
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -52,6 +55,19 @@ struct DelayRecoveryOptions {
   AllocationOptions allocation;
   bool check_followers = true;
   int max_followers = 5;  // followers simulated at most, behind the late train
+  // A held-up follower is driven back on time (service::FollowerRecovery; false: it waits,
+  // then runs its plan, faster only where the wait made it late in that section).
+  bool recover_followers = true;
+  // The runs a held-up follower chooses from on each section: energy-optimal runs for running
+  // times from flat out every follower_time_step_s up to follower_slower_s above the planned
+  // time (within the frontier), and the planned run.
+  double follower_time_step_s = 2.0;
+  double follower_slower_s = 10.0;
+  // Lateness first: minimise the total arrival lateness of the late train and its followers,
+  // then the energy (the late train flat out up to the last section before the station where
+  // it is back on time, that section as slow as keeps the total lateness least). false: the
+  // late train's earliest station back on time, then its least energy (the exact recovery).
+  bool lateness_first = false;
   // Separation (the cap) and how a held-up follower is driven: it waits at the stop, then runs
   // the section faster for the time left (FollowerMode::Wait, delay_service_options()).
   service::ServiceOptions service = delay_service_options();
@@ -112,8 +128,11 @@ struct FollowerCheck {
   double min_speed_margin_kmh = 0.0;
   double min_distance_margin_m = 0.0;  // gap less the braking distance, least
   double min_gap_m = 0.0;
-  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
-  double headway_s = 0.0;       // its planned departure after the train ahead's
+  double station_wait_s = 0.0;    // waited at stops for the line ahead to clear, in total
+  double headway_s = 0.0;         // its planned departure after the train ahead's
+  double traction_kJ = 0.0;       // its actual run over the whole line, re-simulated
+  double plan_traction_kJ = 0.0;  // its planned run
+  double lateness_sum_s = 0.0;    // sum over its arrivals of the lateness (0 when on time)
 };
 
 struct DelayRecoverySummary {
@@ -136,6 +155,13 @@ struct DelayRecoverySummary {
   bool cascade_ends = true;
   double cascade_final_lateness_s = 0.0;
   bool plan_absorbs = true;
+  // "energy-first" (the exact recovery) or "lateness-first"; the sum over the late train and
+  // its held-up followers of their arrival lateness at every stop; in lateness-first mode the
+  // energy-first recovery's traction and total lateness beside it (NaN otherwise).
+  std::string recovery_mode = "energy-first";
+  double total_lateness_s = 0.0;
+  double energy_first_energy_kJ = std::numeric_limits<double>::quiet_NaN();
+  double energy_first_total_lateness_s = std::numeric_limits<double>::quiet_NaN();
   double wall_s = 0.0;
   std::vector<std::string> warnings;
 

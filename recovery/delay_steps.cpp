@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 
 #include "dp/time_target.hpp"
@@ -16,36 +17,72 @@ double kJ(const physics::SimulationResult& sim) {
 
 }  // namespace
 
-const Run& RunCache::get(std::size_t k, double time_s) {
+const Run* RunCache::find(std::size_t k, double time_s) const {
   // A run already solved within a millisecond of the time is that time's run: plans are read
   // to the millisecond, so trains of one pattern differ by that much, and the solver meets a
   // time only to within dp::kTimeTolerance_s anyway.
-  const auto key = std::make_pair(k, std::llround(time_s * 1e6));
-  const auto near = runs_.lower_bound({k, key.second - 1000});
-  if (near != runs_.end() && near->first.first == k && near->first.second <= key.second + 1000)
-    return *near->second;
+  const long long us = std::llround(time_s * 1e6);
+  const auto near = runs_.lower_bound({k, us - 1000});
+  if (near != runs_.end() && near->first.first == k && near->first.second <= us + 1000)
+    return near->second.get();
+  return nullptr;
+}
+
+std::unique_ptr<Run> RunCache::make(std::size_t k, double time_s) const {
   auto run = std::make_unique<Run>();
   if (time_s <= library_.min_time_s(k) + threshold_s_) {
     run->sim = library_.min_time_run(k);
     run->flat_out = true;
-  } else {
-    const dp::SectionTimeSolve sol = library_.solve(k, time_s);
-    const physics::SimulationResult& sim = sol.search.run.sim;
-    if (!sol.search.converged || !dp::run_arrives(sim) ||
-        std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
-      char buf[300];
-      std::snprintf(buf, sizeof buf,
-                    "section %zu (%s): no run meets the running time %.3f s (got %.3f s); "
-                    "nothing is reported",
-                    k + 1,
-                    (library_.route(k).from_name() + " -> " + library_.route(k).to_name()).c_str(),
-                    time_s, sim.running_time_s);
-      throw std::runtime_error(buf);
-    }
-    run->sim = sim;
-    run->program = sol.search.run.program;
+    return run;
   }
-  return *runs_.emplace(key, std::move(run)).first->second;
+  const dp::SectionTimeSolve sol = library_.solve(k, time_s);
+  const physics::SimulationResult& sim = sol.search.run.sim;
+  if (!sol.search.converged || !dp::run_arrives(sim) ||
+      std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
+    char buf[300];
+    std::snprintf(buf, sizeof buf,
+                  "section %zu (%s): no run meets the running time %.3f s (got %.3f s); "
+                  "nothing is reported",
+                  k + 1,
+                  (library_.route(k).from_name() + " -> " + library_.route(k).to_name()).c_str(),
+                  time_s, sim.running_time_s);
+    throw std::runtime_error(buf);
+  }
+  run->sim = sim;
+  run->program = sol.search.run.program;
+  return run;
+}
+
+const Run& RunCache::get(std::size_t k, double time_s) {
+  if (const Run* r = find(k, time_s)) return *r;
+  return *runs_.emplace(std::make_pair(k, std::llround(time_s * 1e6)), make(k, time_s))
+              .first->second;
+}
+
+void RunCache::prefetch(const std::vector<std::vector<double>>& times_s) {
+  // Sections side by side (a section's engine is used by one thread at a time); what is made
+  // does not depend on the thread count.
+  const std::size_t n = times_s.size();
+  std::vector<std::vector<std::pair<double, std::unique_ptr<Run>>>> made(n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (double t : times_s[k])
+      if (find(k, t) == nullptr) made[k].push_back({t, nullptr});
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long kk = 0; kk < static_cast<long>(n); ++kk) {
+    const auto k = static_cast<std::size_t>(kk);
+    try {
+      for (auto& [t, run] : made[k]) run = make(k, t);
+    } catch (...) {
+#pragma omp critical(run_cache_failure)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+  for (std::size_t k = 0; k < n; ++k)
+    for (auto& [t, run] : made[k])
+      if (find(k, t) == nullptr)
+        runs_.emplace(std::make_pair(k, std::llround(t * 1e6)), std::move(run));
 }
 
 AffectedTrain lateness_of(int train, const physics::Trip& trip, const TrainStops& plan,

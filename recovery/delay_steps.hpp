@@ -31,8 +31,12 @@ class RunCache {
   RunCache(const dp::SectionLibrary& library, double flat_out_threshold_s)
       : library_(library), threshold_s_(flat_out_threshold_s) {}
   const Run& get(std::size_t section, double time_s);
+  // Solves the runs of times_s[section] not yet held, sections side by side (OpenMP).
+  void prefetch(const std::vector<std::vector<double>>& times_s);
 
  private:
+  const Run* find(std::size_t section, double time_s) const;
+  std::unique_ptr<Run> make(std::size_t section, double time_s) const;
   const dp::SectionLibrary& library_;
   double threshold_s_;
   std::map<std::pair<std::size_t, long long>, std::unique_ptr<Run>> runs_;

@@ -2,7 +2,12 @@
 // run of the train ahead by the follower model of service/follower.hpp (it waits at a stop
 // rather than leave into an occupied stretch, re-drives only the sections where its planned run
 // would come closer than the braking distance, and is checked against that invariant), and the
-// next train is driven behind its actual run in turn, until one is not held up.
+// next train is driven behind its actual run in turn, until one is not held up. A held-up
+// follower is driven back on time (options.recover_followers) by the dynamic programme of
+// service/follower.hpp over the energy-optimal runs of each section for running times from
+// flat out up to follower_slower_s above the planned time, every follower_time_step_s: back on
+// time at the earliest station, then least energy (or, lateness first, least total lateness,
+// then least energy), never closer than its braking distance.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -97,8 +102,32 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     const service::SeparationScan base =
         service::scan_separation(leader_plan, follower_plan, b, sep);
     std::vector<service::CapEvent> events;
+    const TrainTimes times = train_times(library, plan, f, options);
+    service::FollowerRecovery recover;
+    recover.min_dwell_s = times.min_dwell_s;
+    recover.lateness_first = options.lateness_first;
+    recover.runs = [&](std::size_t first) {
+      std::vector<std::vector<double>> grid(n);
+      for (std::size_t k = first; k < n; ++k) {
+        const double top = times.planned_s[k] + options.follower_slower_s;
+        for (int j = 0;; ++j) {
+          const double t = times.min_s[k] + j * options.follower_time_step_s;
+          if (t >= top - 1e-6) break;
+          grid[k].push_back(std::round(t * 1000.0) / 1000.0);
+        }
+        grid[k].push_back(std::round(top * 1000.0) / 1000.0);
+      }
+      cache.prefetch(grid);
+      std::vector<std::vector<const physics::SimulationResult*>> runs;
+      for (std::size_t k = first; k < n; ++k) {
+        runs.emplace_back();
+        for (double t : grid[k]) runs.back().push_back(&cache.get(k, t).sim);
+      }
+      return runs;
+    };
     service::FollowerRun run = service::drive_follower(
-        library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events);
+        library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events,
+        options.recover_followers ? &recover : nullptr);
     FollowerCheck fc;
     fc.train = static_cast<int>(f);
     fc.behind = static_cast<int>(f - 1);
@@ -110,6 +139,10 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     fc.min_gap_m = run.scan.min_gap_m;
     fc.station_wait_s = run.station_wait_s;
     fc.headway_s = departure - plan.trains[f - 1].departure_s[0];
+    fc.traction_kJ = run.traction_J / 1e3;
+    fc.plan_traction_kJ = run.plan_traction_J / 1e3;
+    for (std::size_t j = 1; j < run.late_s.size(); ++j)
+      fc.lateness_sum_s += std::max(0.0, run.late_s[j]);
     ++sm.followers_checked;
     out.followers.push_back(fc);
     if (!(sm.min_follower_margin_kmh <= fc.min_speed_margin_kmh))

@@ -55,6 +55,181 @@ bool arrives(const physics::SimulationResult& sim) {
   return dp::run_arrives(sim) && !sim.stopped_early;
 }
 
+// The clock time from which `run` (a section's run from rest, its own clock from 0) may leave
+// and keep gap >= v^2 / 2b behind the leader at every trace point and at the start: the least
+// departure, whatever the time the train is ready (the leader's position never decreases).
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double b, double room_m) {
+  double from = leader_clear_at(leader, section_start_m + room_m);
+  for (const physics::TracePoint& p : run.trace) {
+    const double ahead = section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
+    from = std::max(from, leader_clear_at(leader, ahead) - p.t_s);
+  }
+  return from;
+}
+
+// A held-up follower given a recovery: a dynamic programme over its stops. A state is the time
+// it is ready to leave a stop (its planned departure, or its arrival plus the least dwell when
+// late), the lateness so far and the energy so far; a move runs one of the section's candidate
+// runs, leaving when ready or after the least wait that keeps that run clear of the train ahead
+// (exact on the samples, rounded up as every wait is). Being ready earlier is never worse (the
+// follower could wait), so a state is dropped when another is ready no later with no more
+// lateness and no more energy: the programme is exact over the candidate runs. Objective:
+// back on time at the earliest station, then the least final lateness (when it cannot be back
+// on time by the last stop), then least energy; or, lateness first, the least sum of arrival
+// lateness, then least energy.
+void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
+                      const physics::Trip& leader, const physics::Trip& planned, double b,
+                      double room, int train, const FollowerRecovery& recovery,
+                      std::vector<physics::SimulationResult>& sims,
+                      std::vector<double>& dwell_after, double& trip_departure, FollowerRun& out,
+                      std::vector<CapEvent>* events) {
+  const std::size_t n = library.size();
+  constexpr double kLate_s = 0.05;  // later than this is late; lateness sums within it are tied
+  struct State {
+    double ready_s, lateness, energy_J;
+    int parent;                            // index in the previous stop's states
+    const physics::SimulationResult* run;  // the run that reached it
+    double departure_s;                    // of that run
+    double line_wait_s;                    // of the wait before it, for the line ahead
+  };
+  auto rounded_departure = [](double ready, double clear) {
+    if (clear <= ready) return ready;
+    return ready + std::ceil((clear - ready + kWaitMargin_s) * 100.0) / 100.0;
+  };
+  // The first section whose planned run, left at its planned departure, must wait: before it
+  // the follower runs its plan (it cannot leave earlier, and slower only makes it late).
+  std::size_t first = 0;
+  for (; first < n; ++first) {
+    const double dep = planned.stop(first).departure_s;
+    if (clear_from_s(leader, plan.runs[first], plan.trip.section_start_m(first), b, room) >
+        dep + 1e-9)
+      break;
+  }
+  std::vector<std::vector<const physics::SimulationResult*>> extra;
+  if (first < n && recovery.runs) extra = recovery.runs(first);
+  std::vector<std::vector<State>> stages(n + 1);
+  stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure, 0.0});
+  for (std::size_t k = 0; k < n; ++k) {
+    std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
+    if (k >= first && k - first < extra.size())
+      for (const physics::SimulationResult* r : extra[k - first])
+        if (r != nullptr && r != &plan.runs[k]) cands.push_back(r);
+    const double section_start = plan.trip.section_start_m(k);
+    std::vector<double> clear(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c)
+      clear[c] = clear_from_s(leader, *cands[c], section_start, b, room);
+    const double planned_arrival = planned.stop(k + 1).arrival_s;
+    const double least_dwell = k + 1 < n
+                                   ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
+                                                                    ? recovery.min_dwell_s[k + 1]
+                                                                    : plan.dwells_s[k])
+                                   : 0.0;
+    std::vector<State> next;
+    for (std::size_t si = 0; si < stages[k].size(); ++si) {
+      const State& s = stages[k][si];
+      for (std::size_t c = 0; c < cands.size(); ++c) {
+        const double clear_dep = rounded_departure(s.ready_s, clear[c]);
+        // Never arriving before the timetable: a run that would leaves later (waiting longer
+        // at the stop is always clear, the leader's position never decreases).
+        const double dep = std::max(clear_dep, planned_arrival - cands[c]->running_time_s);
+        const double arr = dep + cands[c]->running_time_s;
+        const double late = arr - planned_arrival;
+        double lateness = s.lateness;
+        if (recovery.lateness_first)
+          lateness += std::max(0.0, late);
+        else if (late > kLate_s)
+          lateness = static_cast<double>(k + 1);  // the last late stop so far
+        const double ready =
+            k + 1 < n ? std::max(planned.stop(k + 1).departure_s, arr + least_dwell) : arr;
+        next.push_back({ready, lateness, s.energy_J + cands[c]->energy.traction_work_J,
+                        static_cast<int>(si), cands[c], dep, clear_dep - s.ready_s});
+      }
+    }
+    // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
+    // sums, on ready the rounding of the waits.
+    std::sort(next.begin(), next.end(), [](const State& x, const State& y) {
+      if (x.ready_s != y.ready_s) return x.ready_s < y.ready_s;
+      if (x.lateness != y.lateness) return x.lateness < y.lateness;
+      return x.energy_J < y.energy_J;
+    });
+    std::vector<State> kept;
+    for (const State& s : next) {
+      bool dominated = false;
+      for (const State& q : kept)
+        if (q.ready_s <= s.ready_s + 1e-9 && q.lateness <= s.lateness + 1e-9 &&
+            q.energy_J <= s.energy_J + 1e-6) {
+          dominated = true;
+          break;
+        }
+      if (!dominated) kept.push_back(s);
+    }
+    stages[k + 1] = std::move(kept);
+  }
+  // The best final state. Lateness first: the least lateness sum (sums within kLate_s tied),
+  // then the least energy. Otherwise: back on time at the earliest station, then (when it is
+  // late at the last stop whatever it does) the least final lateness, within kLate_s, as the
+  // late train runs flat out when no station absorbs its delay, then the least energy.
+  const std::vector<State>& final_states = stages[n];
+  const double last_planned = planned.stop(n).arrival_s;
+  double least = 1e300;
+  for (const State& s : final_states) least = std::min(least, s.lateness);
+  const double tie = recovery.lateness_first ? kLate_s : 0.5;
+  double least_final = 1e300;
+  for (const State& s : final_states)
+    if (s.lateness <= least + tie) least_final = std::min(least_final, s.ready_s - last_planned);
+  int best = -1;
+  for (std::size_t i = 0; i < final_states.size(); ++i) {
+    const State& s = final_states[i];
+    if (s.lateness > least + tie) continue;
+    if (!recovery.lateness_first && s.ready_s - last_planned > std::max(least_final, 0.0) + kLate_s)
+      continue;
+    if (best < 0 || s.energy_J < final_states[static_cast<std::size_t>(best)].energy_J)
+      best = static_cast<int>(i);
+  }
+  // Back through the stages: the runs, the waits, the dwells.
+  std::vector<const State*> path(n + 1, nullptr);
+  for (std::size_t k = n; k > 0; --k) {
+    path[k] = &stages[k][static_cast<std::size_t>(best)];
+    best = path[k]->parent;
+  }
+  out.late_s.assign(n + 1, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const State& s = *path[k + 1];
+    const double ready = k == 0 ? trip_departure : path[k]->ready_s;
+    const double wait = s.line_wait_s;  // for the line ahead (the rest, for the timetable)
+    const double planned_arrival = planned.stop(k + 1).arrival_s;
+    if (wait > 0.0 || s.run != &plan.runs[k]) {
+      ++out.sections_redriven;
+      if (events != nullptr) {
+        CapEvent ev;
+        ev.train = train;
+        ev.section = static_cast<int>(k);
+        ev.planned_cost_J = library.engine(k).energy_cost_J(plan.runs[k]);
+        ev.supervised_cost_J = NAN;
+        ev.reoptimised_cost_J = library.engine(k).energy_cost_J(*s.run);
+        ev.reoptimised_wait_s = wait;
+        ev.station_wait_s = wait;
+        ev.waited_late_s = ready + wait + plan.runs[k].running_time_s - planned_arrival;
+        ev.driven = s.run == &plan.runs[k] ? "waited"
+                    : wait > 0.0           ? "waited, then recovered"
+                                           : "recovered";
+        ev.late_s = s.departure_s + s.run->running_time_s - planned_arrival;
+        ev.reoptimised_late_s = ev.late_s;
+        events->push_back(ev);
+      }
+    }
+    out.station_wait_s += wait;
+    sims[k] = *s.run;
+    const double arrival = s.departure_s + s.run->running_time_s;
+    out.late_s[k + 1] = arrival - planned_arrival;
+    if (k == 0)
+      trip_departure = s.departure_s;
+    else
+      dwell_after[k - 1] = s.departure_s - (path[k]->departure_s + path[k]->run->running_time_s);
+  }
+}
+
 }  // namespace
 
 bool keeps_separation(const SeparationScan& scan) {
@@ -65,7 +240,7 @@ bool keeps_separation(const SeparationScan& scan) {
 FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double b, int train,
-                           std::vector<CapEvent>* events) {
+                           std::vector<CapEvent>* events, const FollowerRecovery* recovery) {
   if (!(b > 0.0)) throw std::invalid_argument("the separation braking must be positive");
   const std::size_t n = library.size();
   const double room = options.separation.train_length_m + options.separation.safety_margin_m;
@@ -74,7 +249,10 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   out.planned_scan = scan_separation(leader, planned, b, options.separation);
   const SeparationScan& before = out.planned_scan;
   out.held_up = before.exceeded || before.min_distance_margin_m < 0.0 || before.min_gap_m < 0.0;
+  for (const physics::SimulationResult& r : plan.runs)
+    out.plan_traction_J += r.energy.traction_work_J;
   if (!out.held_up) {
+    out.traction_J = out.plan_traction_J;
     out.trip = planned;
     out.scan = before;
     out.late_s.assign(n + 1, 0.0);
@@ -84,7 +262,11 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
   std::vector<double> dwell_after(n, 0.0);
   double trip_departure = departure_s, start = departure_s;
   out.late_s.assign(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  const bool recovering = recovery != nullptr;
+  if (recovering)
+    drive_recovering(library, plan, leader, planned, b, room, train, *recovery, sims, dwell_after,
+                     trip_departure, out, events);
+  for (std::size_t i = 0; !recovering && i < n; ++i) {
     const dp::SectionEngine& engine = library.engine(i);
     const double section_start = plan.trip.section_start_m(i);
     const double planned_arrival = planned.stop(i + 1).arrival_s;
@@ -205,6 +387,7 @@ FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan&
     }
   }
   out.late_s[0] = trip_departure - departure_s;
+  for (const physics::SimulationResult& r : sims) out.traction_J += r.energy.traction_work_J;
   out.trip = trip_of(library, sims, dwell_after, trip_departure);
   out.scan = scan_separation(leader, out.trip, b, options.separation);
   if (!keeps_separation(out.scan)) {

@@ -12,10 +12,16 @@
 // for its planned arrival, dp/capped_section.hpp, or its planned control braked by the
 // supervisor), when that run arrives earlier and keeps the same invariant. A follower is
 // re-driven only in the sections where its planned run would bind; elsewhere it runs its planned
-// section. The whole run is scanned once more against the train ahead and a run that comes
-// closer than the braking distance anywhere is an error (std::logic_error), never a result.
+// section. A follower given a FollowerRecovery is driven back on time instead: a dynamic
+// programme over its stops chooses, section by section, one of the candidate runs (faster or
+// slower than planned), the least wait at each stop that keeps that run clear of the train
+// ahead, and dwells down to the least dwell when late; it is exact over the candidate runs
+// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is
+// scanned once more against the train ahead and a run that comes closer than the braking distance
+// anywhere is an error (std::logic_error), never a result.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "dp/section_library.hpp"
@@ -26,13 +32,29 @@
 namespace ecorail::service {
 
 struct FollowerRun {
-  physics::Trip trip;           // the actual run, on the clock
-  bool held_up = false;         // its planned run would come closer than the braking distance
-  double station_wait_s = 0.0;  // waited at stops for the line ahead to clear, in total
-  int sections_redriven = 0;    // sections run other than as planned
-  std::vector<double> late_s;   // arrival lateness at each stop (0 at the first: departure)
-  SeparationScan planned_scan;  // the planned run against the train ahead
-  SeparationScan scan;          // the actual run against the train ahead
+  physics::Trip trip;            // the actual run, on the clock
+  bool held_up = false;          // its planned run would come closer than the braking distance
+  double station_wait_s = 0.0;   // waited at stops for the line ahead to clear, in total
+  int sections_redriven = 0;     // sections run other than as planned
+  std::vector<double> late_s;    // arrival lateness at each stop (0 at the first: departure)
+  double traction_J = 0.0;       // traction work at the wheel of the actual run, re-simulated
+  double plan_traction_J = 0.0;  // of its planned run
+  SeparationScan planned_scan;   // the planned run against the train ahead
+  SeparationScan scan;           // the actual run against the train ahead
+};
+
+// How a held-up follower is driven back on time: runs(first) gives, for every section from
+// `first` (the first one where its planned run must wait) to the last, the runs it may drive
+// there besides its planned one (e.g. the energy-optimal runs for a grid of running times;
+// one list per section, index 0 for `first`; pointers valid for the whole drive_follower call);
+// min_dwell_s[j] is the least dwell at stop j (0 at the ends) when it is late. Objective: back on
+// time at the earliest station, then (when no station is reached on time) the least final
+// lateness, then the least traction energy; lateness_first: the least sum of arrival lateness,
+// then the least energy.
+struct FollowerRecovery {
+  std::function<std::vector<std::vector<const physics::SimulationResult*>>(std::size_t first)> runs;
+  std::vector<double> min_dwell_s;
+  bool lateness_first = false;
 };
 
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
@@ -40,7 +62,8 @@ struct FollowerRun {
 FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double braking_m_s2, int train,
-                           std::vector<CapEvent>* events);
+                           std::vector<CapEvent>* events,
+                           const FollowerRecovery* recovery = nullptr);
 
 // The least distance margin a scan may show and still count as kept: the sampled check meets
 // the braking distance to within a centimetre (the wait is rounded up by 0.05 s).

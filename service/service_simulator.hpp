@@ -87,7 +87,8 @@ struct CapEvent {
   // run clear of the train ahead, the lateness that wait gives, how the section was driven
   // ("waited": the wait, then the planned run; "waited, then faster": the wait, then the
   // section library's run for the time left; "reoptimised" or "supervised": leaving earlier
-  // under the cap) and its arrival's lateness.
+  // under the cap; "recovered" or "waited, then recovered": the run a FollowerRecovery chose,
+  // its energy in reoptimised_cost_J) and its arrival's lateness.
   double station_wait_s = 0.0;
   double waited_late_s = 0.0;
   std::string driven = "waited";

@@ -2,8 +2,8 @@
 # `ecorail delay` end to end on a small plan (A6 -> A9, three trains 300 s apart, 380 s trip, written by
 # `ecorail timetable evaluate --csv`): a delay recovered at the next station writes JSON, CSV
 # and SVG with the documented keys and sane values; a delay no station absorbs exits 0 with a
-# warning, back_on_time_at null and the final lateness; bad input exits 2 with one line and no
-# file left behind.
+# warning, back_on_time_at null and the final lateness; --lateness-first beside energy first;
+# bad input exits 2 with one line and no file left behind.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 export XDG_CACHE_HOME="$work/xdg"
@@ -117,6 +117,25 @@ c = d["cascade"]
 assert c["held_up_trains"] == 2 and c["ends"] is False and c["plan_absorbs"] is False, c
 assert c["final_lateness_s"] > 4000, c
 assert any("cannot absorb" in w for w in d["warnings"]), d["warnings"]
+PY
+# Lateness first (--lateness-first) beside energy first on the 120 s plan: the mode is named,
+# its total lateness is no more than energy first's, which is reported beside it and is the
+# default run's; every follower keeps its braking distance.
+"$ecorail" delay --plan close.csv --train 1 --station A7 --delay 60 --followers 2 "${cache[@]}" \
+  --quiet --json ef.json > /dev/null || { echo "FAIL: energy first"; fail=1; }
+"$ecorail" delay --plan close.csv --train 1 --station A7 --delay 60 --followers 2 "${cache[@]}" \
+  --quiet --lateness-first --json lf.json > /dev/null || { echo "FAIL: lateness first"; fail=1; }
+python3 - <<'PY' || fail=1
+import json
+ef, lf = json.load(open("ef.json")), json.load(open("lf.json"))
+assert ef["recovery_mode"] == "energy-first" and ef["energy_first_energy_kJ"] is None, ef
+assert lf["recovery_mode"] == "lateness-first" and "lateness_first" in lf, lf
+assert lf["total_lateness_s"] <= lf["energy_first_total_lateness_s"] + 0.05, lf
+assert abs(lf["energy_first_total_lateness_s"] - ef["total_lateness_s"]) < 1e-6, (lf, ef)
+assert abs(lf["energy_first_energy_kJ"] - ef["recovery_energy_kJ"]) < 1e-6, (lf, ef)
+for d in (ef, lf):
+    for x in d["followers"]:
+        assert x["min_distance_margin_m"] >= -0.01 and x["traction_kJ"] > 0, x
 PY
 # The delay is bounded, with a clear error (it was accepted up to 86400 s and silently capped).
 expect_error "--delay" delay --plan plan.csv --train 1 --station A7 --delay 20000 --json x.json

@@ -4,9 +4,10 @@
 // Invariants, checked independently of the scan the model uses: every driven train keeps at
 // least its braking distance behind the actual run of the train ahead at every sample (the
 // leader's position read from its own trip with state_at), never arrives at or leaves a station
-// before the train ahead, and never leaves a stop before its timetable; the chain stops at the
-// first train not held up, and the late train's own recovery is the same, to the bit, as without
-// followers when nobody is held up.
+// before the train ahead, never leaves a stop or arrives before its timetable, reports the
+// lateness of its re-simulated trip and is on time from the station where it says it is back
+// on time; the chain stops at the first train not held up, and the late train's own recovery
+// is the same, to the bit, as without followers when nobody is held up.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,6 +66,20 @@ TEST(KnockOnProperty, FollowersKeepTheirBrakingDistanceAndNeverPass) {
         EXPECT_GT(m[s].arrival_s, a[s].arrival_s) << "station " << s;
         EXPECT_GT(m[s].departure_s, a[s].departure_s) << "station " << s;
         EXPECT_GE(m[s].departure_s, planned.departure_s[s] - 1e-6) << "station " << s;
+        // The lateness reported is the re-simulated trip's, and a follower never arrives
+        // before its timetable.
+        if (s > 0) {
+          EXPECT_NEAR(r.trains[i].lateness_s[s], m[s].arrival_s - planned.arrival_s[s], 1e-6);
+          EXPECT_GE(m[s].arrival_s, planned.arrival_s[s] - 1e-6) << "station " << s;
+        }
+      }
+      // Back on time where it says: no arrival from there on later than the tolerance.
+      const int e = r.trains[i].back_on_time_at.empty()
+                        ? -1
+                        : plan.station_index(r.trains[i].back_on_time_at);
+      if (e > 0) {
+        for (std::size_t s = static_cast<std::size_t>(e); s < m.size(); ++s)
+          EXPECT_LE(m[s].arrival_s, planned.arrival_s[s] + 0.05) << "station " << s;
       }
     }
     // Every follower but the last one checked is held up; the last is free unless the chain
