@@ -14,6 +14,8 @@
 // never makes a result worse. An engine built without cruise_as_hold is left as the grid has it.
 #pragma once
 
+#include <functional>
+#include <limits>
 #include <string>
 
 #include "dp/section_engine.hpp"
@@ -29,6 +31,13 @@ struct CruisePolishOptions {
   double search_half_width_m = 3000.0;  // coasting point searched within this of the grid's
   double search_tolerance_m = 0.5;      // golden section stops at this bracket width
   double search_step_m = 0.5;           // RK4 step of the search's re-simulations
+  // The search under one time price: the RK4 step of its re-simulations (at least
+  // search_step_m), the first simplex's size, its budget per price, and how close to the time
+  // the price's optimum must come before the first hold's speed alone closes the rest.
+  double price_search_step_m = 5.0;
+  double price_first_step_m = 40.0;
+  int price_max_simulations = 600;
+  double price_time_tolerance_s = 0.2;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -42,10 +51,22 @@ struct CruisePolishReport {
   double coast_shift_m = 0.0;  // coasting point: polished minus the grid's
 };
 
+// How the run ends: at rest at the route's end (the default, run_arrives), or moving (a
+// journey's last timing point with a speed above 0): then `reaches` says whether a run ends as
+// asked, and with a finite pinned_speed_ms (a speed window of zero width) the onset of the
+// final brake is solved on every run so that it ends at that speed.
+struct PolishEnd {
+  bool moving = false;
+  std::function<bool(const physics::SimulationResult&)> reaches;
+  double pinned_speed_ms = std::numeric_limits<double>::quiet_NaN();
+  double speed_tolerance_ms = 0.0;
+};
+
 // run must be an arriving run of engine that meets target_s within tolerance_s. On success
 // (report.applied) run is replaced by the polished run, re-simulated at the engine's fine step,
 // arriving, within tolerance_s of target_s and cheaper by the objective.
 CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, double tolerance_s,
-                                 const CruisePolishOptions& options, LambdaRun& run);
+                                 const CruisePolishOptions& options, LambdaRun& run,
+                                 const PolishEnd& end = {});
 
 }  // namespace ecorail::dp
