@@ -81,26 +81,63 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     if (first == n) first = k;
     last = k;
   }
-  if (first == n || first == 0 || program[first - 1].control != Control::MaxTraction) {
-    return std::nullopt;
+  auto end_of = [&](std::size_t k) { return k + 1 < n ? program[k + 1].from_m : length_m; };
+  // The cruise starts at the first hold that is not short: the short holds and traction blips
+  // before it (the grid's staircase up to the cruise speed) are traction.
+  while (first < n && (program[first].control != Control::Hold ||
+                       end_of(first) - program[first].from_m < options.short_phase_m)) {
+    ++first;
   }
+  if (first == n || first == 0 || first > last) return std::nullopt;
   if (last + 1 >= n) return std::nullopt;  // a cruise into the stop: nothing leaves it
   const double cruise_m = program[last + 1].from_m - program[first].from_m;
   if (cruise_m < options.min_cruise_m) return std::nullopt;
   CruiseShape shape;
-  for (std::size_t k = 0; k <= first; ++k) shape.program.push_back(program[k]);
-  for (std::size_t k = first + 1; k < n; ++k) {
-    const double to = k + 1 < n ? program[k + 1].from_m : length_m;
-    if (k <= last && to - program[k].from_m < options.short_phase_m) {
-      ++shape.dropped;  // the phase before it goes on
+  for (std::size_t k = 0; k < first; ++k) {
+    const bool short_phase = k > 0 && end_of(k) - program[k].from_m < options.short_phase_m;
+    if (short_phase) {
+      ++shape.dropped;
       continue;
     }
-    if (shape.program.back().control == program[k].control) continue;
+    if (!shape.program.empty() && shape.program.back().control == program[k].control) continue;
     shape.program.push_back(program[k]);
   }
-  shape.hold = first;
+  if (shape.program.back().control != Control::MaxTraction) return std::nullopt;
+  shape.program.push_back(program[first]);
+  shape.hold = shape.program.size() - 1;
+  auto is_short = [&](std::size_t k) {
+    return k <= last && end_of(k) - program[k].from_m < options.short_phase_m;
+  };
+  for (std::size_t k = first + 1; k < n; ++k) {
+    if (!is_short(k)) {
+      if (shape.program.back().control != program[k].control) shape.program.push_back(program[k]);
+      continue;
+    }
+    // A run of short phases (a staircase: short coasts and holds descending into a lower
+    // limit, or blips of traction inside a cruise) becomes one phase of the control it spends
+    // the most distance in; a run of one is dropped and the phase before it goes on.
+    std::size_t j = k;
+    double length_by_control[physics::kControlCount] = {};
+    while (j < n && is_short(j)) {
+      length_by_control[static_cast<int>(program[j].control)] += end_of(j) - program[j].from_m;
+      ++j;
+    }
+    shape.dropped += static_cast<int>(j - k);
+    if (j - k >= 2) {
+      int dominant = 0;
+      for (int c = 1; c < physics::kControlCount; ++c) {
+        if (length_by_control[c] > length_by_control[dominant]) dominant = c;
+      }
+      const Control control = static_cast<Control>(dominant);
+      if (shape.program.back().control != control) {
+        shape.program.push_back({program[k].from_m, control});
+        --shape.dropped;
+      }
+    }
+    k = j - 1;
+  }
   shape.exit = shape.program.size();
-  for (std::size_t k = shape.program.size(); k-- > first;) {
+  for (std::size_t k = shape.program.size(); k-- > shape.hold;) {
     if (shape.program[k].control == Control::Hold) {
       shape.exit = k + 1;
       break;

@@ -147,6 +147,9 @@ TEST(CruisePolish, ShortCruisesAndDisabledPolishAreLeftAlone) {
 }  // namespace
 }  // namespace ecorail
 
+namespace ecorail {
+namespace {
+
 // A lower limit in the middle of a long level run: full traction, hold, coast into the lower
 // limit, hold it, full traction, hold, coast, brake. Under one time price every speed hold on
 // level track has the same speed (the singular arc's speed depends on the price alone when the
@@ -189,7 +192,6 @@ double reach(const physics::SimulationResult& sim, double from_m, double v_ms) {
 // The common-hold-speed strategy for v meeting target_s; its traction work (inf if none).
 double strategy_J(const physics::Motion& motion, double v_ms, double target_s) {
   using physics::Control;
-  const double v_low = units::kmh_to_ms(50.0);
   const physics::SimulationResult flat =
       run(motion,
           {{0.0, Control::MaxTraction}, {kDrop_m, Control::Hold}, {kRise_m, Control::MaxTraction}});
@@ -276,3 +278,6 @@ TEST(CruisePolish, EveryHoldOfALimitDropRunHasTheOnePricesSpeedAndTheStrategyOpt
       << "polished " << polished_J << " J, strategy optimum " << independent_J << " J at "
       << 0.5 * (a + b) << " km/h; holds " << hold_kmh[0] << ", " << hold_kmh[1] << " km/h";
 }
+
+}  // namespace
+}  // namespace ecorail
