@@ -59,6 +59,9 @@ constexpr int kMaxTimeSolves = 30;
 // The price search: its first step in log lambda, and at most this many prices.
 constexpr double kPriceBracketStep = 0.05;
 constexpr int kMaxPrices = 12;
+// Restarts of the simplex at one price, and the least gain (J) of one that earns another.
+constexpr int kMaxRestarts = 4;
+constexpr double kRestartGain_J = 1.0;
 // The narrowest bracket of a hold start worth another re-simulation.
 constexpr double kMinBracket_m = 1e-9;
 
@@ -347,9 +350,21 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   double first_step_m = options.price_first_step_m;
   auto time_at_price = [&](double log_lambda) {
     const double lambda = std::exp(log_lambda);
-    const NelderMeadResult m = nelder_mead_minimum(
-        [&](const std::vector<double>& y) { return lagrangian(lambda, y, nullptr); }, x,
-        first_step_m, options.search_tolerance_m, options.price_max_simulations);
+    // Restarted from its best vertex with a fresh simplex while that still gains: a simplex
+    // that collapsed along the kink of a coast into a lower limit stops short of the optimum.
+    auto lagrangian_at = [&](const std::vector<double>& y) {
+      return lagrangian(lambda, y, nullptr);
+    };
+    NelderMeadResult m = nelder_mead_minimum(
+        lagrangian_at, x, first_step_m, options.search_tolerance_m, options.price_max_simulations);
+    for (int restart = 0; restart < kMaxRestarts && std::isfinite(m.f); ++restart) {
+      const NelderMeadResult again =
+          nelder_mead_minimum(lagrangian_at, m.x, options.price_first_step_m,
+                              options.search_tolerance_m, options.price_max_simulations);
+      const bool gained = again.f < m.f - kRestartGain_J;
+      if (again.f < m.f) m = again;
+      if (!gained) break;
+    }
     if (!std::isfinite(m.f)) return kInf;
     x = m.x;
     first_step_m = std::max(options.search_tolerance_m, 0.25 * options.price_first_step_m);
