@@ -2,6 +2,7 @@
 
 #include "dp/golden_section.hpp"
 #include "dp/lambda_bracket.hpp"
+#include "dp/nelder_mead.hpp"
 
 #include <cmath>
 #include <limits>
@@ -33,6 +34,17 @@ bool CruisePolishOptions::IsValid(std::string* error) const {
   if (!(std::isfinite(search_step_m) && search_step_m > 0.0 && search_step_m <= 10.0)) {
     return fail("cruise polish search_step_m must be in (0, 10] m");
   }
+  if (!(std::isfinite(price_search_step_m) && price_search_step_m > 0.0 &&
+        price_search_step_m <= 50.0)) {
+    return fail("cruise polish price_search_step_m must be in (0, 50] m");
+  }
+  if (!(std::isfinite(price_first_step_m) && price_first_step_m > 0.0)) {
+    return fail("cruise polish price_first_step_m must be finite and > 0");
+  }
+  if (price_max_simulations < 1) return fail("cruise polish price_max_simulations must be >= 1");
+  if (!(std::isfinite(price_time_tolerance_s) && price_time_tolerance_s > 0.0)) {
+    return fail("cruise polish price_time_tolerance_s must be finite and > 0");
+  }
   return true;
 }
 
@@ -44,6 +56,12 @@ using physics::ControlProgram;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // The hold-speed solve: at most this many re-simulations per coasting point.
 constexpr int kMaxTimeSolves = 30;
+// The price search: its first step in log lambda, and at most this many prices.
+constexpr double kPriceBracketStep = 0.05;
+constexpr int kMaxPrices = 12;
+// Restarts of the simplex at one price, and the least gain (J) of one that earns another.
+constexpr int kMaxRestarts = 4;
+constexpr double kRestartGain_J = 1.0;
 // The narrowest bracket of a hold start worth another re-simulation.
 constexpr double kMinBracket_m = 1e-9;
 
@@ -66,26 +84,63 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     if (first == n) first = k;
     last = k;
   }
-  if (first == n || first == 0 || program[first - 1].control != Control::MaxTraction) {
-    return std::nullopt;
+  auto end_of = [&](std::size_t k) { return k + 1 < n ? program[k + 1].from_m : length_m; };
+  // The cruise starts at the first hold that is not short: the short holds and traction blips
+  // before it (the grid's staircase up to the cruise speed) are traction.
+  while (first < n && (program[first].control != Control::Hold ||
+                       end_of(first) - program[first].from_m < options.short_phase_m)) {
+    ++first;
   }
+  if (first == n || first == 0 || first > last) return std::nullopt;
   if (last + 1 >= n) return std::nullopt;  // a cruise into the stop: nothing leaves it
   const double cruise_m = program[last + 1].from_m - program[first].from_m;
   if (cruise_m < options.min_cruise_m) return std::nullopt;
   CruiseShape shape;
-  for (std::size_t k = 0; k <= first; ++k) shape.program.push_back(program[k]);
-  for (std::size_t k = first + 1; k < n; ++k) {
-    const double to = k + 1 < n ? program[k + 1].from_m : length_m;
-    if (k <= last && to - program[k].from_m < options.short_phase_m) {
-      ++shape.dropped;  // the phase before it goes on
+  for (std::size_t k = 0; k < first; ++k) {
+    const bool short_phase = k > 0 && end_of(k) - program[k].from_m < options.short_phase_m;
+    if (short_phase) {
+      ++shape.dropped;
       continue;
     }
-    if (shape.program.back().control == program[k].control) continue;
+    if (!shape.program.empty() && shape.program.back().control == program[k].control) continue;
     shape.program.push_back(program[k]);
   }
-  shape.hold = first;
+  if (shape.program.back().control != Control::MaxTraction) return std::nullopt;
+  shape.program.push_back(program[first]);
+  shape.hold = shape.program.size() - 1;
+  auto is_short = [&](std::size_t k) {
+    return k <= last && end_of(k) - program[k].from_m < options.short_phase_m;
+  };
+  for (std::size_t k = first + 1; k < n; ++k) {
+    if (!is_short(k)) {
+      if (shape.program.back().control != program[k].control) shape.program.push_back(program[k]);
+      continue;
+    }
+    // A run of short phases (a staircase: short coasts and holds descending into a lower
+    // limit, or blips of traction inside a cruise) becomes one phase of the control it spends
+    // the most distance in; a run of one is dropped and the phase before it goes on.
+    std::size_t j = k;
+    double length_by_control[physics::kControlCount] = {};
+    while (j < n && is_short(j)) {
+      length_by_control[static_cast<int>(program[j].control)] += end_of(j) - program[j].from_m;
+      ++j;
+    }
+    shape.dropped += static_cast<int>(j - k);
+    if (j - k >= 2) {
+      int dominant = 0;
+      for (int c = 1; c < physics::kControlCount; ++c) {
+        if (length_by_control[c] > length_by_control[dominant]) dominant = c;
+      }
+      const Control control = static_cast<Control>(dominant);
+      if (shape.program.back().control != control) {
+        shape.program.push_back({program[k].from_m, control});
+        --shape.dropped;
+      }
+    }
+    k = j - 1;
+  }
   shape.exit = shape.program.size();
-  for (std::size_t k = shape.program.size(); k-- > first;) {
+  for (std::size_t k = shape.program.size(); k-- > shape.hold;) {
     if (shape.program[k].control == Control::Hold) {
       shape.exit = k + 1;
       break;
@@ -104,12 +159,57 @@ struct Candidate {
 class Polisher {
  public:
   Polisher(const SectionEngine& engine, const StartState& start, double target_s,
-           double tolerance_s, CruisePolishReport& report)
+           double tolerance_s, const PolishEnd& end, CruisePolishReport& report)
       : engine_(engine),
         start_(start),
         target_s_(target_s),
         tolerance_s_(tolerance_s),
+        end_(end),
         report_(report) {}
+
+  // Whether a run ends as asked.
+  bool ends(const physics::SimulationResult& sim) const {
+    return end_.moving ? end_.reaches(sim) : run_arrives(sim);
+  }
+
+  // The run of program at step_m, resumed from `earlier` (a run at that step, or empty). For a
+  // run that ends at a pinned speed, the final brake's onset is solved first (the end speed
+  // rises as braking starts later): only the tail after the onset is integrated again.
+  physics::SimulationResult simulate(ControlProgram& program, double step_m,
+                                     const physics::SimulationResult& earlier) {
+    physics::SimulationResult sim = engine_.resimulate(program, start_, step_m, earlier);
+    ++report_.simulations;
+    if (!end_.moving || !std::isfinite(end_.pinned_speed_ms) ||
+        program.back().control != Control::MaxBrake || program.size() < 2) {
+      return sim;
+    }
+    const double target = end_.pinned_speed_ms;
+    auto miss = [&](const physics::SimulationResult& r) {
+      return end_.reaches(r) || r.end_speed_ms > target ? target - r.end_speed_ms : target;
+    };
+    if (std::abs(miss(sim)) <= 0.5 * end_.speed_tolerance_ms) return sim;
+    const std::size_t k = program.size() - 1;
+    const double lo = program[k - 1].from_m + 1e-6, hi = engine_.route().length_m() - 1e-6;
+    if (!(lo < hi)) return sim;
+    physics::SimulationResult trial;
+    bool met = false;
+    auto f = [&](double x) {
+      program[k].from_m = x;
+      trial = engine_.resimulate(program, start_, step_m, sim);
+      ++report_.simulations;
+      const double m = miss(trial);
+      met = std::abs(m) <= 0.5 * end_.speed_tolerance_ms;
+      return m;
+    };
+    const double f_lo = f(lo);
+    if (met) return trial;
+    const double f_hi = f(hi);
+    if (met) return trial;
+    if (!(f_lo >= 0.0 && f_hi <= 0.0)) return sim;
+    LambdaBracket root(f, lo, f_lo, hi, f_hi, kMaxTimeSolves);
+    root.narrow([&] { return met; }, kMinBracket_m);
+    return trial;
+  }
 
   // The run of program (hold speed free, everything else fixed) that meets the time at step_m:
   // the end of the traction phase before the hold is solved by a safeguarded secant on the
@@ -120,14 +220,13 @@ class Polisher {
     auto f_at = [&](double x, Candidate* out) {
       program[hold].from_m = x;
       Candidate c;
-      c.program = program;
       // Consecutive runs differ from the hold's start on (the earlier of the two starts), so
       // each resumes, bit for bit, from the run before it.
-      c.sim = engine_.resimulate(program, start_, step_m, recent_);
+      c.sim = simulate(program, step_m, recent_);
+      c.program = program;
       recent_ = c.sim;
-      ++report_.simulations;
       // A run that does not arrive counts as too slow: the hold must start later.
-      const double f = run_arrives(c.sim) ? c.sim.running_time_s - target_s_ : kInf;
+      const double f = ends(c.sim) ? c.sim.running_time_s - target_s_ : kInf;
       c.cost_J = engine_.energy_cost_J(c.sim);
       *out = std::move(c);
       return f;
@@ -186,6 +285,7 @@ class Polisher {
   const SectionEngine& engine_;
   StartState start_;
   double target_s_, tolerance_s_;
+  const PolishEnd& end_;
   CruisePolishReport& report_;
   physics::SimulationResult recent_;  // the last run (empty: none yet)
 };
@@ -193,11 +293,13 @@ class Polisher {
 }  // namespace
 
 CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, double tolerance_s,
-                                 const CruisePolishOptions& options, LambdaRun& run) {
+                                 const CruisePolishOptions& options, LambdaRun& run,
+                                 const PolishEnd& end) {
   CruisePolishReport report;
   report.cost_before_J = run.cost_J;
   report.cost_after_J = run.cost_J;
-  if (!options.enabled || !engine.options().cruise_as_hold || !run_arrives(run.sim) ||
+  if (!options.enabled || !engine.options().cruise_as_hold ||
+      !(end.moving ? end.reaches && end.reaches(run.sim) : run_arrives(run.sim)) ||
       std::abs(run.sim.running_time_s - target_s) > tolerance_s) {
     return report;
   }
@@ -205,52 +307,101 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, options);
   if (!shape) return report;
   report.dropped_phases = shape->dropped;
-  Polisher polisher(engine, run.start, target_s, tolerance_s, report);
+  Polisher polisher(engine, run.start, target_s, tolerance_s, end, report);
   const std::size_t hold = shape->hold;
-  // Every coast that leaves a hold (the last one, and any before a descent) is searched in
-  // turn, the others held where they are.
-  std::vector<std::size_t> exits;
-  for (std::size_t k = hold + 1; k < shape->program.size(); ++k) {
-    if (shape->program[k].control == Control::Coast &&
-        shape->program[k - 1].control == Control::Hold) {
-      exits.push_back(k);
+  // Every switch point from the first hold on is searched (each hold's start sets its speed,
+  // each coast's start where it leaves), the final brake excepted: the stop's braking curve
+  // starts it, or the end speed when the run ends at a pinned speed.
+  std::vector<std::size_t> free;
+  for (std::size_t k = hold; k < shape->program.size(); ++k) {
+    if (k + 1 == shape->program.size() && shape->program[k].control == Control::MaxBrake &&
+        (!end.moving || std::isfinite(end.pinned_speed_ms))) {
+      break;
+    }
+    free.push_back(k);
+  }
+  const double floor_m = shape->program[hold - 1].from_m;
+  auto program_at = [&](const std::vector<double>& x, ControlProgram* p) {
+    *p = shape->program;
+    double previous = floor_m;
+    for (std::size_t i = 0; i < free.size(); ++i) {
+      if (!(x[i] > previous + 1.0 && x[i] < length_m - 1.0)) return false;
+      (*p)[free[i]].from_m = previous = x[i];
+    }
+    return free.back() + 1 >= p->size() || previous < (*p)[free.back() + 1].from_m - 1.0;
+  };
+  // One time price for the whole run: the switch points that minimise cost + lambda * time.
+  // At that minimum every hold's speed and every coasting point meet the same Lagrange
+  // condition (the marginal energy of a second saved is lambda everywhere), which a search of
+  // one switch point with another solving the time cannot reach when a coast runs into a lower
+  // limit (the cost has a kink there, and the optimum lies along it).
+  const double price_step_m = std::max(options.search_step_m, options.price_search_step_m);
+  physics::SimulationResult recent;
+  auto lagrangian = [&](double lambda, const std::vector<double>& x, double* time_s) {
+    ControlProgram p;
+    if (!program_at(x, &p)) return kInf;
+    recent = polisher.simulate(p, price_step_m, recent);
+    if (!polisher.ends(recent)) return kInf;
+    if (time_s != nullptr) *time_s = recent.running_time_s;
+    return engine.energy_cost_J(recent) + lambda * recent.running_time_s;
+  };
+  std::vector<double> x(free.size());
+  for (std::size_t i = 0; i < free.size(); ++i) x[i] = shape->program[free[i]].from_m;
+  double first_step_m = options.price_first_step_m;
+  auto time_at_price = [&](double log_lambda) {
+    const double lambda = std::exp(log_lambda);
+    // Restarted from its best vertex with a fresh simplex while that still gains: a simplex
+    // that collapsed along the kink of a coast into a lower limit stops short of the optimum.
+    auto lagrangian_at = [&](const std::vector<double>& y) {
+      return lagrangian(lambda, y, nullptr);
+    };
+    NelderMeadResult m = nelder_mead_minimum(
+        lagrangian_at, x, first_step_m, options.search_tolerance_m, options.price_max_simulations);
+    for (int restart = 0; restart < kMaxRestarts && std::isfinite(m.f); ++restart) {
+      const NelderMeadResult again =
+          nelder_mead_minimum(lagrangian_at, m.x, options.price_first_step_m,
+                              options.search_tolerance_m, options.price_max_simulations);
+      const bool gained = again.f < m.f - kRestartGain_J;
+      if (again.f < m.f) m = again;
+      if (!gained) break;
+    }
+    if (!std::isfinite(m.f)) return kInf;
+    x = m.x;
+    first_step_m = std::max(options.search_tolerance_m, 0.25 * options.price_first_step_m);
+    double time_s = kInf;
+    lagrangian(lambda, x, &time_s);
+    return time_s - target_s;
+  };
+  // The price whose optimum meets the time, to within price_time_tolerance_s; the last
+  // hundredths are then met by the first hold's speed alone (meet_time).
+  const double log_lambda0 = std::log(run.lambda > 0.0 ? run.lambda : 1.0);
+  const double error0_s = time_at_price(log_lambda0);
+  double error_s = error0_s;
+  if (!(std::abs(error0_s) <= options.price_time_tolerance_s)) {
+    // The bracket starts at the price already searched (its optimum is not searched again).
+    LambdaBracket price(
+        [&](double log_lambda) {
+          return error_s = log_lambda == log_lambda0 ? error0_s : time_at_price(log_lambda);
+        },
+        log_lambda0, kPriceBracketStep, kMaxPrices);
+    price.narrow([&] { return std::abs(error_s) <= options.price_time_tolerance_s; });
+  }
+  ControlProgram current;
+  if (!program_at(x, &current)) return report;
+  const double c0 = shape->program[shape->exit].from_m;
+  const double c_best = current[shape->exit].from_m;
+  double best_cost = kInf;
+  {
+    Candidate c = polisher.meet_time(current, hold, options.search_step_m);
+    if (!c.program.empty()) {
+      current = c.program;
+      best_cost = c.cost_J;
     }
   }
-  const double c0 = shape->program[shape->exit].from_m;
-  // The hold speed found for the last coasting point is where the next solve starts.
-  ControlProgram current = shape->program;
-  double best_cost = kInf;
-  for (const std::size_t exit : exits) {
-    // The coasting point stays after its hold starts and before the phase after it.
-    const double c_start = current[exit].from_m;
-    const double c_min =
-        std::max(c_start - options.search_half_width_m, current[exit - 1].from_m + 1.0);
-    const double c_max =
-        std::min(c_start + options.search_half_width_m,
-                 (exit + 1 < current.size() ? current[exit + 1].from_m : length_m) - 1.0);
-    if (!(c_min < c_max)) continue;
-    auto cost_at = [&](double c) {
-      ControlProgram p = current;
-      p[exit].from_m = c;
-      Candidate cand = polisher.meet_time(std::move(p), hold, options.search_step_m);
-      if (cand.program.empty()) return kInf;
-      current[hold].from_m = cand.program[hold].from_m;
-      return cand.cost_J;
-    };
-    // Golden section on the coasting point (the energy along the time constraint is unimodal
-    // around the optimum; an infeasible point scores +inf and moves the bracket away from it).
-    const GoldenSectionResult g =
-        golden_section_minimum(cost_at, c_min, c_max, options.search_tolerance_m,
-                               std::numeric_limits<int>::max(), /*ties_go_left=*/true);
-    if (!std::isfinite(g.f)) continue;
-    current[exit].from_m = g.x;
-    best_cost = g.f;
-  }
   if (!std::isfinite(best_cost)) return report;
-  const double c_best = current[shape->exit].from_m;
   // The result: the best coasting point at the engine's fine step, the time met there.
   Candidate fine = polisher.meet_time(current, hold, engine.options().resim_step_m);
-  if (fine.program.empty() || !run_arrives(fine.sim) ||
+  if (fine.program.empty() || !polisher.ends(fine.sim) ||
       std::abs(fine.sim.running_time_s - target_s) > tolerance_s || !(fine.cost_J < run.cost_J)) {
     return report;
   }

@@ -1,19 +1,25 @@
-// Cruise polish: the continuous optimum of a long cruise, after the grid found its shape. On a
-// long stretch the grid's optimum cruises, but its cruise is a staircase: a hold, short coasts
-// and holds a fraction of a km/h apart, short traction blips (on a 48.5 km level TTOBench run,
-// seventeen phases between 38 and 40 km). Each phase is the grid's, so the pair that matters,
-// the hold speed (where the traction phase before the hold ends) and where the final coast
-// starts, sits where the grid put it; the running-time trim then moves the hold speed alone.
-// The polish makes the cruise one hold: every phase shorter than short_phase_m between the
-// first and the last hold is dropped (the hold goes on), and then the coasting point is chosen
-// by a golden-section search along the running-time constraint: for each coasting point the
-// hold speed is solved (secant on the re-simulated time) so the time is met, and the run with
-// the least energy cost is kept. The search re-simulates at search_step_m; the best run is
-// re-simulated at the engine's fine step and trimmed to the time as every result is. It is
-// accepted only when it arrives, meets the time and costs less than the run it replaces, so it
-// never makes a result worse. An engine built without cruise_as_hold is left as the grid has it.
+// Cruise polish: the continuous optimum of a run with long cruises, after the grid found its
+// shape. On a long stretch the grid's optimum cruises, but its cruise is a staircase: a hold,
+// short coasts and holds a fraction of a km/h apart, short traction blips (on a 48.5 km level
+// TTOBench run, seventeen phases between 38 and 40 km), and each hold speed and coasting point
+// sits where the grid put it. The polish makes each cruise one hold: a run of phases shorter
+// than short_phase_m becomes one phase of the control it spends most distance in (a single
+// short phase is dropped and the phase before it goes on). Then, under one time price lambda,
+// every switch point from the first hold on (each hold's start, which sets its speed, each
+// coast's start, the start of a hold at a lower limit) is placed where the run's cost plus
+// lambda times its running time is least (Nelder-Mead, dp/nelder_mead.hpp, re-simulating at
+// price_search_step_m), and lambda is searched (the engine's one root search) until that run
+// meets the time within price_time_tolerance_s. At that optimum every hold meets the same
+// Lagrange condition: on level track with a constant efficiency every free hold has the same
+// speed, and a coast into a lower limit ends at the limit. The last hundredths of a second are
+// met by the first hold's speed alone (a secant on its start), at the search step and then at
+// the engine's fine step. The result is accepted only when it arrives, meets the time and
+// costs less than the run it replaces, so it never makes a result worse. An engine built
+// without cruise_as_hold is left as the grid has it.
 #pragma once
 
+#include <functional>
+#include <limits>
 #include <string>
 
 #include "dp/section_engine.hpp"
@@ -26,9 +32,16 @@ struct CruisePolishOptions {
   // metro section are not worth the re-simulations.
   double min_cruise_m = 2000.0;
   double short_phase_m = 200.0;         // phases inside the cruise shorter than this are dropped
-  double search_half_width_m = 3000.0;  // coasting point searched within this of the grid's
+  double search_half_width_m = 3000.0;  // (not used by the price search; kept for callers)
   double search_tolerance_m = 0.5;      // golden section stops at this bracket width
   double search_step_m = 0.5;           // RK4 step of the search's re-simulations
+  // The search under one time price: the RK4 step of its re-simulations (at least
+  // search_step_m), the first simplex's size, its budget per price, and how close to the time
+  // the price's optimum must come before the first hold's speed alone closes the rest.
+  double price_search_step_m = 1.0;
+  double price_first_step_m = 40.0;
+  int price_max_simulations = 600;
+  double price_time_tolerance_s = 0.2;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -42,10 +55,22 @@ struct CruisePolishReport {
   double coast_shift_m = 0.0;  // coasting point: polished minus the grid's
 };
 
+// How the run ends: at rest at the route's end (the default, run_arrives), or moving (a
+// journey's last timing point with a speed above 0): then `reaches` says whether a run ends as
+// asked, and with a finite pinned_speed_ms (a speed window of zero width) the onset of the
+// final brake is solved on every run so that it ends at that speed.
+struct PolishEnd {
+  bool moving = false;
+  std::function<bool(const physics::SimulationResult&)> reaches;
+  double pinned_speed_ms = std::numeric_limits<double>::quiet_NaN();
+  double speed_tolerance_ms = 0.0;
+};
+
 // run must be an arriving run of engine that meets target_s within tolerance_s. On success
 // (report.applied) run is replaced by the polished run, re-simulated at the engine's fine step,
 // arriving, within tolerance_s of target_s and cheaper by the objective.
 CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, double tolerance_s,
-                                 const CruisePolishOptions& options, LambdaRun& run);
+                                 const CruisePolishOptions& options, LambdaRun& run,
+                                 const PolishEnd& end = {});
 
 }  // namespace ecorail::dp

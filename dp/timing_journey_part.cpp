@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dp/cruise_polish.hpp"
 #include "dp/lambda_bracket.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
@@ -439,6 +440,21 @@ class PartSolver {
           std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s) {
         ok = true;
       }
+    }
+    if (end_.moving && ok && binding_.empty() && bands_.empty() && end_(run.sim) &&
+        std::abs(run.sim.running_time_s - target_s_) <= kTrimTolerance_s) {
+      // The stage-priced search of a run that ends moving does not polish its cruise as the
+      // plain search does: the same polish, with the final brake solved for the end speed when
+      // the end's window has zero width. It only ever replaces the run by a cheaper one that
+      // arrives within kTrimTolerance_s and ends inside the window.
+      PolishEnd polish_end;
+      polish_end.moving = true;
+      polish_end.reaches = [this](const physics::SimulationResult& sim) { return end_(sim); };
+      if (end_.max_ms - end_.min_ms <= 2.0 * end_.tol_ms) {
+        polish_end.pinned_speed_ms = 0.5 * (end_.min_ms + end_.max_ms);
+        polish_end.speed_tolerance_ms = end_.tol_ms;
+      }
+      polish_cruise(engine_, target_s_, kTrimTolerance_s, CruisePolishOptions{}, run, polish_end);
     }
     if (end_.moving && binding_.empty() && !arrival_at_floor_ && end_(run.sim) &&
         run.sim.running_time_s < target_s_ - options_.time_tolerance_s &&

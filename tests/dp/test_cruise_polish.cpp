@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "data/train_io.hpp"
+#include "dp/regimes.hpp"
 #include "dp/section_engine.hpp"
 #include "dp/time_target.hpp"
 #include "physics/units.hpp"
@@ -141,6 +142,141 @@ TEST(CruisePolish, ShortCruisesAndDisabledPolishAreLeftAlone) {
   bad.cruise_polish.search_step_m = 0.0;
   EXPECT_FALSE(bad.IsValid(&why));
   EXPECT_NE(why.find("search_step_m"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ecorail
+
+namespace ecorail {
+namespace {
+
+// A lower limit in the middle of a long level run: full traction, hold, coast into the lower
+// limit, hold it, full traction, hold, coast, brake. Under one time price every speed hold on
+// level track has the same speed (the singular arc's speed depends on the price alone when the
+// cost is the work at the wheel: R'(v) v^2 = lambda), and the coast into the lower limit ends
+// at the limit's start at the limit's speed. The independent optimum: the simulator alone, for
+// a common hold speed v the end of each traction phase where v is reached, the first coast
+// bisected to reach the lower limit exactly at its start, the last coast bisected to meet the
+// time; v by golden section. The polish (one time price over every switch point) must meet the
+// time, hold two equal speeds and cost no more than that optimum beyond 0.01 %.
+namespace limit_drop {
+
+constexpr double kDrop_m = 4000.0, kRise_m = 5000.0, kLength_m = 10000.0;
+constexpr double kStep_m = 1.0;
+
+physics::Route route() {
+  std::vector<physics::RouteSegment> segs(3);
+  const double ends[] = {kDrop_m, kRise_m, kLength_m}, limits[] = {80.0, 50.0, 80.0};
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = i == 0 ? 0.0 : ends[i - 1];
+    segs[i].end_m = ends[i];
+    segs[i].speed_limit_ms = units::kmh_to_ms(limits[i]);
+  }
+  return physics::Route(segs, 0.0, 1, "P0", "P1");
+}
+
+physics::SimulationResult run(const physics::Motion& motion, const physics::ControlProgram& p) {
+  physics::SimulationOptions opt;
+  opt.step_m = kStep_m;
+  return physics::simulate(motion, p, opt);
+}
+
+// Where a full-traction run (from the start, or from the lower limit's end) first reaches v.
+double reach(const physics::SimulationResult& sim, double from_m, double v_ms) {
+  for (const auto& p : sim.trace) {
+    if (p.s_m >= from_m && p.v_ms >= v_ms) return p.s_m;
+  }
+  return INFINITY;
+}
+
+// The common-hold-speed strategy for v meeting target_s; its traction work (inf if none).
+double strategy_J(const physics::Motion& motion, double v_ms, double target_s) {
+  using physics::Control;
+  const physics::SimulationResult flat =
+      run(motion,
+          {{0.0, Control::MaxTraction}, {kDrop_m, Control::Hold}, {kRise_m, Control::MaxTraction}});
+  const double h1 = reach(flat, 0.0, v_ms), h2 = reach(flat, kRise_m, v_ms);
+  if (!(h1 < kDrop_m && h2 < kLength_m)) return INFINITY;
+  auto program = [&](double c1, double c2) {
+    return physics::ControlProgram{{0.0, Control::MaxTraction},
+                                   {h1, Control::Hold},
+                                   {c1, Control::Coast},
+                                   {kDrop_m, Control::Hold},
+                                   {kRise_m, Control::MaxTraction},
+                                   {h2, Control::Hold},
+                                   {c2, Control::Coast}};
+  };
+  // The first coast: the latest start that reaches the lower limit without braking.
+  double lo = h1, hi = kDrop_m;
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const auto sim = run(motion, program(mid, kLength_m - 1.0));
+    // Too late a coast meets the lower limit's braking curve and brakes before the drop.
+    bool slow_enough = !sim.trace.empty();
+    for (const auto& p : sim.trace) {
+      if (p.s_m < kDrop_m - 1e-6 &&
+          (p.regime == physics::Regime::FullBrake || p.regime == physics::Regime::PartialBrake)) {
+        slow_enough = false;
+      }
+    }
+    (slow_enough ? lo : hi) = mid;
+  }
+  const double c1 = lo;
+  // The last coast meets the time (later coast: faster).
+  double a = h2 + 1.0, b = kLength_m - 1.0;
+  auto time_at = [&](double c2) {
+    const auto sim = run(motion, program(c1, c2));
+    return dp::run_arrives(sim) ? sim.running_time_s : INFINITY;
+  };
+  if (!(time_at(a) >= target_s && time_at(b) <= target_s)) return INFINITY;
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (a + b);
+    (time_at(mid) > target_s ? a : b) = mid;
+  }
+  const auto sim = run(motion, program(c1, b));
+  return sim.energy.traction_work_J;
+}
+
+}  // namespace limit_drop
+
+TEST(CruisePolish, EveryHoldOfALimitDropRunHasTheOnePricesSpeedAndTheStrategyOptimumsCost) {
+  const physics::Train train = data::default_train();
+  const physics::Route route = limit_drop::route();
+  const dp::SectionEngine held(train, route, coarse(true));
+  const double target_s = held.min_time_run().running_time_s * 1.15;
+  const dp::TimeSearchResult r = dp::solve_for_time(held, target_s, {});
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(r.run.sim.running_time_s, target_s, 1e-3);
+  // The speed of each hold (partial traction at a steady speed below the limit).
+  std::vector<double> hold_kmh;
+  for (const dp::RegimeSpan& s : dp::regime_spans(r.run.sim.trace)) {
+    if (!s.speed_hold || s.end_m - s.start_m < 200.0) continue;
+    const double v = units::ms_to_kmh(s.start_speed_ms);
+    if (v < 50.5) continue;  // the lower limit's hold
+    hold_kmh.push_back(v);
+  }
+  ASSERT_EQ(hold_kmh.size(), 2u);
+  EXPECT_NEAR(hold_kmh[0], hold_kmh[1], 0.3);
+  // The independent optimum over the common hold speed.
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  auto e = [&](double v_kmh) {
+    return limit_drop::strategy_J(held.motion(), units::kmh_to_ms(v_kmh), target_s);
+  };
+  double a = 52.0, b = 79.5;
+  double c = b - g * (b - a), d = a + g * (b - a), fc = e(c), fd = e(d);
+  while (b - a > 0.02) {
+    if (fc <= fd) {
+      b = d, d = c, fd = fc, c = b - g * (b - a), fc = e(c);
+    } else {
+      a = c, c = d, fc = fd, d = a + g * (b - a), fd = e(d);
+    }
+  }
+  const double independent_J = std::min(fc, fd);
+  ASSERT_TRUE(std::isfinite(independent_J));
+  const double polished_J = r.run.sim.energy.traction_work_J;
+  EXPECT_LE(polished_J, independent_J * (1.0 + 1e-4))
+      << "polished " << polished_J << " J, strategy optimum " << independent_J << " J at "
+      << 0.5 * (a + b) << " km/h; holds " << hold_kmh[0] << ", " << hold_kmh[1] << " km/h";
 }
 
 }  // namespace

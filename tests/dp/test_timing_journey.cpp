@@ -291,6 +291,24 @@ TEST(TimingJourney, ARunStartingAtOneMetrePerSecondStartsThere) {
   EXPECT_NEAR(sol.windows[1].time_s, 240.0, 0.05);
 }
 
+// A moving start (1 m/s) with an end speed of at least 1 m/s and no top: the arrival is met at
+// its latest bound (energy falls with running time) and the end speed lies in its band, on the
+// re-simulation.
+TEST(TimingJourney, AMovingStartWithAnOpenTopEndSpeedArrivesOnTime) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const std::vector<TimingWindow> w = {{0.0, 0.0, 0.0, 1.0, 1.0},
+                                       {3000.0, 200.0, 240.0, 1.0, kOpen}};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  const physics::SimulationResult& sim = sol.journey.sections.at(0).run.sim;
+  ASSERT_FALSE(sim.trace.empty());
+  EXPECT_DOUBLE_EQ(sim.trace.front().v_ms, 1.0);
+  EXPECT_NEAR(sim.running_time_s, 240.0, coarse().time_tolerance_s);
+  EXPECT_GE(sim.end_speed_ms, 1.0 - 0.01 / 3.6);
+  EXPECT_NEAR(sol.windows[1].time_s, 240.0, coarse().time_tolerance_s);
+}
+
 // Runs that end moving (the last point's speed window reaches above 0). The windows hold in the
 // re-simulation; a looser end band never costs more than a tighter one (E[0, inf) <= E[1, inf)
 // <= E[1, 1], and [0, inf) <= ending at rest, which it allows); and no simple feasible program
