@@ -26,22 +26,14 @@
 #include "power/network_balance.hpp"
 #include "power/network_evaluation.hpp"
 #include "power/supply_loader.hpp"
+#include "reference_pattern.hpp"
 
 namespace {
 
 using namespace ecorail;
 
 const fleet::PatternTrip& pattern() {
-  static const fleet::PatternTrip p = [] {
-    const auto line = data::default_line();
-    const auto train = data::default_train();
-    const auto stops = data::stops_between(line, "A1", "A14");
-    const dp::SectionLibrary lib(train, data::build_routes(line, stops, train), {});
-    dp::JourneyOptions o;
-    o.measure_marginals = false;
-    return fleet::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
-  }();
-  return p;
+  return bench::reference_pattern();
 }
 
 // The reference fleet's model of that name (and overlap variant), built once.

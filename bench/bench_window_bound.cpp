@@ -18,6 +18,7 @@
 #include "energy/window_bound.hpp"
 #include "fleet/fleet_pattern.hpp"
 #include "fleet/fleet_problem.hpp"
+#include "reference_pattern.hpp"
 
 namespace {
 
@@ -25,14 +26,7 @@ using namespace ecorail;
 
 const energy::PowerFlowModel& reference_model() {
   static const std::unique_ptr<energy::PowerFlowModel> m = [] {
-    const auto line = data::default_line();
-    const auto train = data::default_train();
-    const auto stops = data::stops_between(line, "A1", "A14");
-    const dp::SectionLibrary lib(train, data::build_routes(line, stops, train), {});
-    dp::JourneyOptions o;
-    o.measure_marginals = false;
-    const fleet::PatternTrip p =
-        fleet::optimal_split_pattern(lib, std::vector<double>(12, 30.0), 2086.0, o);
+    const fleet::PatternTrip& p = bench::reference_pattern();
     return std::make_unique<energy::PowerFlowModel>(p.trip, fleet::limits_of({}),
                                                     energy::EnergyModelOptions{});
   }();

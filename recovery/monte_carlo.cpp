@@ -64,20 +64,19 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
 std::string MonteCarloSummary::BriefReport() const {
   const MonteCarloStatistics& s = statistics;
   char buf[1100];
-  std::snprintf(buf, sizeof buf,
-                "ecorail montecarlo days %llu-%llu: punctuality %.4f +- %.4f, mean lateness %.3f "
-                "+- %.3f s, p95 lateness %.2f +- %.2f s, recovery %.1f +- %.1f s, traction %.1f "
-                "+- %.1f kJ, substation %.1f +- %.1f kJ (plan %.1f kJ), taken over %.3f a day; "
-                "followers in the fast mode (departures at least %.1f s apart, not driven); "
-                "%.2f s wall, %s",
-                static_cast<unsigned long long>(first_day),
-                static_cast<unsigned long long>(last_day > 0 ? last_day - 1 : 0),
-                s.punctuality.mean, s.punctuality.ci95, s.mean_lateness_s.mean,
-                s.mean_lateness_s.ci95, s.p95_lateness_s.mean, s.p95_lateness_s.ci95,
-                s.recovery_time_s.mean, s.recovery_time_s.ci95, s.traction_kJ.mean,
-                s.traction_kJ.ci95, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
-                s.takeovers.mean, separation_s, wall_s,
-                std::string(dp::status_word(termination, 0)).c_str());
+  std::snprintf(
+      buf, sizeof buf,
+      "ecorail montecarlo days %llu-%llu: punctuality %.4f +- %.4f, mean lateness %.3f "
+      "+- %.3f s, p95 lateness %.2f +- %.2f s, recovery %.1f +- %.1f s, traction %.1f "
+      "+- %.1f kJ, substation %.1f +- %.1f kJ (plan %.1f kJ), taken over %.3f a day; "
+      "followers in the fast mode (departures at least %.1f s apart, not driven); "
+      "%.2f s wall, %s",
+      static_cast<unsigned long long>(first_day),
+      static_cast<unsigned long long>(last_day > 0 ? last_day - 1 : 0), s.punctuality.mean,
+      s.punctuality.ci95, s.mean_lateness_s.mean, s.mean_lateness_s.ci95, s.p95_lateness_s.mean,
+      s.p95_lateness_s.ci95, s.recovery_time_s.mean, s.recovery_time_s.ci95, s.traction_kJ.mean,
+      s.traction_kJ.ci95, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
+      s.takeovers.mean, separation_s, wall_s, std::string(dp::status_word(termination, 0)).c_str());
   return std::string(buf) + "\n";
 }
 

@@ -9,13 +9,14 @@
 // arrive on time), or the seed paper's rule (flat out until on time, never early). A train
 // departs no sooner than separation_s after the train ahead left the same station (knock-on
 // delay: the fast mode of the followers, reported as such; the followers are not driven under
-// the braking-distance cap here, as recover_delay drives them, docs/delays.md gives the error); a drawn delay over takeover_s takes the train out of service at that station: the next
-// service takes over its passengers, its remaining sections are not run (no energy) and its
-// remaining arrivals are counted as taken over, not as late. Energy: traction at the wheel and
-// substation energy after regenerated energy is used, in the power-flow model of one supply
-// section (min of traction and regenerated energy per bin), from precomputed section runs laid
-// on the day's grid (recovery/section_runs.hpp). Days run in parallel (OpenMP) into an array
-// indexed by day, so results do not depend on the thread count.
+// the braking-distance cap here, as recover_delay drives them, docs/delays.md gives the error); a
+// drawn delay over takeover_s takes the train out of service at that station: the next service
+// takes over its passengers, its remaining sections are not run (no energy) and its remaining
+// arrivals are counted as taken over, not as late. Energy: traction at the wheel and substation
+// energy after regenerated energy is used, in the power-flow model of one supply section (min of
+// traction and regenerated energy per bin), from precomputed section runs laid on the day's grid
+// (recovery/section_runs.hpp). Days run in parallel (OpenMP) into an array indexed by day, so
+// results do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
