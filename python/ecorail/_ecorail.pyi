@@ -260,7 +260,7 @@ class timetable:  # submodule ecorail.timetable
                      headway_s: Range = (120, 660), dwell_range_s: Range = (30, 45),
                      peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                      offpeak_headway_s: Range = (300, 660), seed: int = 1,
-                     time_limit_s: float = 0.0, restarts: int = 2, moves: int = 2000000,
+                     time_limit_s: float = 0.0, restarts: int = 2, rounds: int = 0, moves: int = 2000000,
                      anneal_step_s: float = 1.0, gap: float = 1e-4, pattern: bool = False,
                      per_train_patterns: bool = False,
                      progress: Progress = None) -> "timetable.FleetResult": ...
@@ -302,7 +302,7 @@ class timetable:  # submodule ecorail.timetable
                  dwell_s: float = 30.0, dwell_range_s: Range = (30, 45),
                  peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                  offpeak_headway_s: Range = (300, 660), seed: int = 1, time_limit_s: float = 0.0,
-                 restarts: int = 2, moves: int = 2000000, anneal_step_s: float = 1.0,
+                 restarts: int = 2, rounds: int = 0, moves: int = 2000000, anneal_step_s: float = 1.0,
                  gap: float = 1e-4, pattern: bool = False, per_train_patterns: bool = False,
                  ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
                  progress: Progress = None) -> "timetable.FleetResult": ...

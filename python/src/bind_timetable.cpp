@@ -277,6 +277,7 @@ struct OptimiseArgs {
   std::uint64_t seed = 1;
   double time_limit_s = 0.0;
   int restarts = 2;
+  int rounds = 0;  // --rounds: further rounds after the first (without a time limit)
   long moves = 2000000L;
   double anneal_step_s = 1.0;
   double gap = 1e-4;
@@ -292,6 +293,7 @@ PyFleet optimise_py(FleetState& state, const FleetArgs& a, const OptimiseArgs& a
   o.seed = args.seed;
   o.time_limit_s = args.time_limit_s;
   o.restarts = args.restarts;
+  o.rounds = args.rounds;
   o.moves_per_run = args.moves;
   o.anneal_step_s = args.anneal_step_s;
   o.gap_fraction = args.gap;
@@ -556,23 +558,24 @@ void bind_timetable(py::module_& m) {
           "optimise",
           [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
              std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
-             std::uint64_t seed, double time_limit_s, int restarts, long moves,
+             std::uint64_t seed, double time_limit_s, int restarts, int rounds, long moves,
              double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
              const py::object& progress) {
             return optimise_py(*f.state,
                                with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                             std::move(peaks), peak_headway_s, offpeak_headway_s),
-                               {seed, time_limit_s, restarts, moves, anneal_step_s, gap, pattern,
-                                per_train_patterns},
+                               {seed, time_limit_s, restarts, rounds, moves, anneal_step_s, gap,
+                                pattern, per_train_patterns},
                                progress);
           },
           py::kw_only(), py::arg("trains") = 100, py::arg("span_s") = 63900,
           py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
           py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
           py::arg("offpeak_headway_s") = Range{300, 660}, py::arg("seed") = 1,
-          py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("moves") = 2000000L,
-          py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4, py::arg("pattern") = false,
-          py::arg("per_train_patterns") = false, py::arg("progress") = py::none(),
+          py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("rounds") = 0,
+          py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4,
+          py::arg("pattern") = false, py::arg("per_train_patterns") = false,
+          py::arg("progress") = py::none(),
           "ecorail.timetable.optimise on this fleet's sections and pattern (the Fleet keeps its "
           "own pattern: a pattern search runs on a study of its own).")
       .def(
@@ -632,17 +635,17 @@ void bind_timetable(py::module_& m) {
          const std::string& overlap, double step_s, std::vector<double> sections_at_m,
          py::object power_supply, int trains, int span_s, Range headway_s, double trip_time_s,
          double dwell_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
-         Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, long moves,
-         double anneal_step_s, double gap, bool pattern, bool per_train_patterns, double ds_m,
-         double dv_kmh, int threads, const py::object& progress) {
+         Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, int rounds,
+         long moves, double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
+         double ds_m, double dv_kmh, int threads, const py::object& progress) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
                        std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return optimise_py(
-            *fleet_state(line, train, a), a,
-            {seed, time_limit_s, restarts, moves, anneal_step_s, gap, pattern, per_train_patterns},
-            progress);
+        return optimise_py(*fleet_state(line, train, a), a,
+                           {seed, time_limit_s, restarts, rounds, moves, anneal_step_s, gap,
+                            pattern, per_train_patterns},
+                           progress);
       },
       py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
       py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
@@ -652,9 +655,10 @@ void bind_timetable(py::module_& m) {
       py::arg("dwell_range_s") = Range{30, 45}, py::arg("peaks") = std::vector<Range>{},
       py::arg("peak_headway_s") = Range{120, 150}, py::arg("offpeak_headway_s") = Range{300, 660},
       py::arg("seed") = 1, py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2,
-      py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4,
-      py::arg("pattern") = false, py::arg("per_train_patterns") = false, py::arg("ds_m") = 5.0,
-      py::arg("dv_kmh") = 0.2, py::arg("threads") = 0, py::arg("progress") = py::none(),
+      py::arg("rounds") = 0, py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0,
+      py::arg("gap") = 1e-4, py::arg("pattern") = false, py::arg("per_train_patterns") = false,
+      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
+      py::arg("progress") = py::none(),
       (std::string("The headways that minimise substation energy, as `ecorail timetable "
                    "optimise`: exact DPs for the overlap models, annealing (restarts, moves, "
                    "seed, anneal_step_s, time_limit_s in s; 0: none) + polish + a bound for "

@@ -155,6 +155,15 @@ def test_optimise_gap_matches_cli(reference, run_cli):
     # A search stopped by its budget is a result (as Ceres' NO_CONVERGENCE): usable.
     assert strict.summary.is_solution_usable
     assert strict.to_dict()["summary"]["gap_fraction_of_substation"] > 1e-4
+    # Further rounds (--rounds): the program's document, and never worse than none.
+    more = fleet.optimise(trains=12, span_s=6000, moves=2000, rounds=1)
+    cli_more = run_cli("timetable", "optimise", "--trains", "12", "--span", "6000", "--moves",
+                       "2000", "--rounds", "1", "--quiet")
+    assert without_wall_times(more.to_dict(), clock) == without_wall_times(cli_more, clock)
+    none = fleet.optimise(trains=12, span_s=6000, moves=2000)
+    assert more.substation_energy_kJ <= none.substation_energy_kJ + 1e-6
+    with pytest.raises(ValueError, match="rounds"):
+        fleet.optimise(trains=12, span_s=6000, rounds=-1)
     # A Fleet's study, taken for another problem, gives the free function's document.
     other = fleet.evaluate(trains=20, span_s=6000, headway_s=(120, 660))
     alone = ecorail.timetable.evaluate(line, train, trains=20, span_s=6000)
