@@ -6,9 +6,10 @@
 #                 the same build runs the tests of ASAN_TESTS (default: every GoogleTest room but
 #                 dp and timetable, whose large grids take minutes under ASan; the same rooms'
 #                 code runs in the others' tests) and every fuzz harness for FUZZ_SECONDS
-#                 (default 3) on its seed corpus; ASAN_GTEST_FILTER (default: all but the
-#                 10 000-row calibration log, 25 s under ASan, run by the main tests) picks the
-#                 cases. One extra build keeps CI inside its budget.
+#                 (default 3) on its seed corpus; ASAN_GTEST_FILTER picks the cases (default:
+#                 all but five calibrations of 5-25 s each under ASan, which the main tests run;
+#                 a Ceres calibration with a Huber loss stays). One extra build keeps CI inside
+#                 its budget.
 #   asan          GCC, AddressSanitizer + UBSan (-O1 -g) in build-asan, tests of ASAN_TESTS: the
 #                 build where Eigen's allocation met Debian's Ceres (docs/reliability.md)
 #   fuzz          clang, the fuzz harnesses only in build-fuzz (for deep runs: fuzz/run.sh)
@@ -31,6 +32,9 @@ default_rooms="data physics policy fitting output"
 # Line tables are all a sanitizer report needs (file:line in every frame) and cost a quarter less
 # compile time than full -g in the CI build; the asan mode keeps -g for a debugger.
 lines="-gline-tables-only"
+slow="-CalibrationLongLog.*:CalibrationPublished.*:CalibrationSynthetic.*"
+slow+=":CalibrationOptions.NotchColumnsReadThroughTheBaseEnvelopes"
+slow+=":CalibrationOptions.RecoversATractionScale"
 
 if [ "$what" = ci ]; then
   rooms="${ASAN_TESTS:-$default_rooms}"
@@ -42,7 +46,7 @@ if [ "$what" = ci ]; then
   cmake --build build-san -j"$jobs" --target "${targets[@]}"
   for r in $rooms; do
     echo "== ASan+UBSan (clang): test_$r"
-    build-san/tests/test_"$r" --gtest_brief=1 --gtest_filter="${ASAN_GTEST_FILTER:--CalibrationLongLog.*}"
+    build-san/tests/test_"$r" --gtest_brief=1 --gtest_filter="${ASAN_GTEST_FILTER:-$slow}"
   done
   # A fixed libFuzzer seed: CI explores the same inputs on every run, so a red CI is a change's
   # doing and reproducible; deep runs (mode fuzz, fuzz/run.sh) draw a new seed each time.
