@@ -149,8 +149,13 @@ void run_optimise(const TimetableArgs& a) {
   o.anneal_step_s = a.anneal_step_s;
   o.gap_fraction = a.gap;
   o.threads = a.problem.threads;
-  std::string why;
-  if (!o.IsValid(&why)) bad("--restarts/--rounds/--moves/--time-limit/--gap/--threads", why);
+  require_valid_flags(o, {{"restarts", "--restarts"},
+                          {"rounds", "--rounds"},
+                          {"moves_per_run", "--moves"},
+                          {"time_limit_s", "--time-limit"},
+                          {"gap_fraction", "--gap"},
+                          {"anneal_step_s", "--anneal-step"},
+                          {"threads", "--threads"}});
   fleet::TimetableStudy s = make_study(a);
   if (!a.quiet && isatty(STDERR_FILENO)) {
     o.progress = [](const fleet::OptimiserProgress& p) {

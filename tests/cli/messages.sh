@@ -36,4 +36,10 @@ one_flag "--to" policy --from A6 --time 110 --out p.bin
   --trip-time 480 --csv tt.csv > /dev/null 2> err.txt || { echo "FAIL: --trains 010"; cat err.txt; fail=1; }
 [ -f tt.csv ] && [ "$(cut -d, -f1 tt.csv | sort -u | grep -c '^[0-9]')" -eq 10 ] ||
   { echo "FAIL: --trains 010 is not ten trains"; fail=1; }
+# The search's options are refused on the one flag at fault, "expected" said once.
+for bad_flag in "--rounds -1" "--restarts 5000" "--gap 2" "--anneal-step 0.3"; do
+  set -- $bad_flag
+  expect_error "field '$1': expected" timetable optimise --trains 6 --span 1500 "$1" "$2" --json o.json
+  grep -q "expected.*expected\|/--" stderr.txt && { echo "FAIL: $bad_flag: $(cat stderr.txt)"; fail=1; }
+done
 exit "$fail"
