@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 
 namespace ecorail::dp {
@@ -28,32 +29,49 @@ double seconds_since(Clock::time_point t0) {
 
 // Every section's run for one lambda. Sections are independent, so they run side by side
 // (each one's sweep then runs on the thread it is given); results do not depend on which thread
-// ran which section.
+// ran which section. A section whose source is another (a twin: equal track, same start) takes
+// that one's run, which is bit for bit what its own engine would give.
 // The first section may start mid-run (a restart).
 // step_m: the re-simulation step of the runs (0: each engine's fine step).
-std::vector<LambdaRun> run_all(const std::vector<const SectionEngine*>& engines, double lambda,
+std::vector<LambdaRun> run_all(const std::vector<const SectionEngine*>& engines,
+                               const std::vector<std::size_t>& source, double lambda,
                                const StartState& start, double step_m) {
   std::vector<LambdaRun> runs(engines.size());
   const int n = static_cast<int>(engines.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < n; ++i) {
+    if (source[i] != static_cast<std::size_t>(i)) continue;
     const SectionEngine& e = *engines[i];
     runs[i] = e.run(lambda, i == 0 ? start : StartState{}, e.search_step_m(step_m));
   }
+  for (int i = 0; i < n; ++i) {
+    if (source[i] != static_cast<std::size_t>(i)) runs[i] = runs[source[i]];
+  }
   return runs;
-}
-
-// The same runs at each engine's fine step (from their kept value functions: no sweep).
-void refine_all(const std::vector<const SectionEngine*>& engines, std::vector<LambdaRun>& runs) {
-  const int n = static_cast<int>(runs.size());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) runs[i] = engines[i]->fine_run(runs[i]);
 }
 
 double total_time(const std::vector<LambdaRun>& runs) {
   double t = 0.0;
   for (const auto& r : runs) t += r.sim.running_time_s;
   return t;
+}
+
+// The same runs at each engine's fine step (from their kept value functions: no sweep). A twin
+// whose run is its source's (same price) takes that one's fine run.
+void refine_all(const std::vector<const SectionEngine*>& engines,
+                const std::vector<std::size_t>& source, std::vector<LambdaRun>& runs) {
+  const int n = static_cast<int>(runs.size());
+  std::vector<char> own(runs.size());
+  for (int i = 0; i < n; ++i) {
+    own[i] = source[i] == static_cast<std::size_t>(i) || runs[i].lambda != runs[source[i]].lambda;
+  }
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < n; ++i) {
+    if (own[i]) runs[i] = engines[i]->fine_run(runs[i]);
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!own[i]) runs[i] = runs[source[i]];
+  }
 }
 
 // Optimal split: regula falsi on log(lambda) for the total time, then a trim of one section.
@@ -66,14 +84,15 @@ struct PricePrediction {
 // The price is bracketed and narrowed on runs re-simulated at opt.search_step_m (coarse, as a
 // section's search); the best price's runs are then made fine before the trim, which alone are
 // returned.
-void optimal_split(const std::vector<const SectionEngine*>& engines, double target,
+void optimal_split(const std::vector<const SectionEngine*>& engines,
+                   const std::vector<std::size_t>& source, double target,
                    const TimeSearchOptions& opt, const StartState& start,
                    const PricePrediction& predicted, JourneySolution& out,
                    std::vector<LambdaRun>& best) {
   double best_err = INFINITY, best_x = std::log(opt.lambda_guess);
   double step_m = opt.search_step_m;
   auto evaluate = [&](double x) {
-    std::vector<LambdaRun> runs = run_all(engines, std::exp(x), start, step_m);
+    std::vector<LambdaRun> runs = run_all(engines, source, std::exp(x), start, step_m);
     ++out.lambda_evaluations;
     report_progress(opt.progress, "lambda evaluation", out.lambda_evaluations, 0);
     const double f = total_time(runs) - target;
@@ -112,7 +131,7 @@ void optimal_split(const std::vector<const SectionEngine*>& engines, double targ
     bracket->narrow([&] { return best_err <= tolerance; });
   };
   if (best_err > coarse) narrow(coarse);
-  refine_all(engines, best);
+  refine_all(engines, source, best);
   best_err = std::abs(total_time(best) - target);
   step_m = 0.0;  // from here on every run is fine
   // Close the rest on one section, the longest-running first (it has the most room to move);
@@ -318,7 +337,15 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   std::vector<physics::Route> routes;
   double min_total = 0.0, length = 0.0;
   std::vector<double> min_times, remaining_m;
+  // Each section's source of runs (run_all): its first twin in the journey, unless that is a
+  // restart's first section, which starts elsewhere.
+  std::vector<std::size_t> source;
+  std::map<std::size_t, std::size_t> first_of_twin;
+  const bool restarts = !options.start.at_departure();
   for (std::size_t i = first; i < last; ++i) {
+    const bool own = restarts && i == first;
+    const std::size_t k = i - first;
+    source.push_back(own ? k : first_of_twin.emplace(library.twin(i), k).first->second);
     engines.push_back(&library.engine(i));
     routes.push_back(library.route(i));
     const bool restart = i == first && !options.start.at_departure();
@@ -340,7 +367,8 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   if (options.split == Split::Optimal) {
     const PricePrediction predicted =
         price_from_frontiers(library, first, last, total_time_s, options);
-    optimal_split(engines, total_time_s, options.search, options.start, predicted, out, runs);
+    optimal_split(engines, source, total_time_s, options.search, options.start, predicted, out,
+                  runs);
     if (!out.converged && engines.front()->searches_coarse(options.search.search_step_m)) {
       // As a section's search (solve_for_time): where the coarse runs' own decisions make their
       // times differ from the fine runs' (long, slow runs: A6 -> A8 in 1100 s with 30 s
@@ -348,7 +376,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
       TimeSearchOptions fine = options.search;
       fine.search_step_m = 0.0;
       runs.clear();
-      optimal_split(engines, total_time_s, fine, options.start, predicted, out, runs);
+      optimal_split(engines, source, total_time_s, fine, options.start, predicted, out, runs);
     }
   } else {
     out.lambda_J_per_s = NAN;

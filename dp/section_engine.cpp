@@ -57,6 +57,8 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
                              const EngineOptions& options, const physics::Route& envelope_route)
     : train_(train),
       route_(route),
+      own_envelope_(&route == &envelope_route ||
+                    physics::track_key(route) == physics::track_key(envelope_route)),
       options_(validated(options, train, envelope_route)),
       envelope_(train_, envelope_route, options.envelope_resolution_m),
       motion_(train_, route_, envelope_),
@@ -64,6 +66,25 @@ SectionEngine::SectionEngine(const physics::Train& train, const physics::Route& 
   if (options_.keep_transitions) {
     const ThreadScope threads(options_.threads);
     table_ = build_table();
+  }
+}
+
+SectionEngine::SectionEngine(const physics::Route& route, const SectionEngine& twin)
+    : train_(twin.train_),
+      route_(route),
+      options_(twin.options_),
+      envelope_(train_, route_, options_.envelope_resolution_m),
+      motion_(train_, route_, envelope_),
+      grid_(envelope_, route_.length_m(), options_.grid) {
+  if (!twin.own_envelope_ || physics::track_key(route_) != physics::track_key(twin.route_)) {
+    throw std::invalid_argument("an engine can share only the table of a route with equal track");
+  }
+  if (options_.keep_transitions) {
+    table_ = twin.table_;
+    if (table_ == nullptr) {
+      const ThreadScope threads(options_.threads);
+      table_ = build_table();
+    }
   }
 }
 

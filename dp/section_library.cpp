@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 
@@ -49,11 +50,15 @@ SectionLibrary::SectionLibrary(const physics::Train& train, std::vector<physics:
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument(why);
   if (routes_.empty()) throw std::invalid_argument("a section library needs at least one route");
-  for (std::size_t i = 0; i < routes_.size(); ++i) slots_.push_back(std::make_unique<Slot>());
-  for (const physics::Route& route : routes_) {
-    tables_estimate_bytes_ +=
-        estimate_engine(train_, route, options_.engine.grid, options_.engine.envelope_resolution_m)
-            .bytes;
+  std::map<std::vector<double>, std::size_t> first_with_track;
+  for (std::size_t i = 0; i < routes_.size(); ++i) {
+    slots_.push_back(std::make_unique<Slot>());
+    const auto [it, fresh] = first_with_track.emplace(physics::track_key(routes_[i]), i);
+    twins_.push_back(it->second);
+    if (!fresh) continue;  // shares its twin's table
+    tables_estimate_bytes_ += estimate_engine(train_, routes_[i], options_.engine.grid,
+                                              options_.engine.envelope_resolution_m)
+                                  .bytes;
   }
   const double budget = options_.memory_budget_bytes > 0.0 ? options_.memory_budget_bytes
                                                            : 0.5 * memory_limit_bytes();
@@ -70,7 +75,8 @@ SectionLibrary::Slot& SectionLibrary::slot(std::size_t i) const {
 const SectionEngine& SectionLibrary::engine(std::size_t i) const {
   Slot& s = slot(i);
   std::call_once(s.engine_once, [&] {
-    s.engine = std::make_unique<SectionEngine>(train_, routes_[i], options_.engine);
+    s.engine = twins_[i] == i ? std::make_unique<SectionEngine>(train_, routes_[i], options_.engine)
+                              : std::make_unique<SectionEngine>(routes_[i], engine(twins_[i]));
     s.min_run = s.engine->min_time_run();
     ++engine_builds_;
   });

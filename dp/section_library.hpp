@@ -71,6 +71,9 @@ class SectionLibrary {
   const SectionLibraryOptions& options() const { return options_; }
 
   const SectionEngine& engine(std::size_t i) const;
+  // The first section whose track equals section i's (physics::track_key; i itself when no
+  // earlier one does). Twins share one transition table, and a journey runs a twin's price once.
+  std::size_t twin(std::size_t i) const { return twins_.at(i); }
   const physics::SimulationResult& min_time_run(std::size_t i) const;
   double min_time_s(std::size_t i) const { return min_time_run(i).running_time_s; }
   // The frontier, from the store when one is given and holds it, else computed (and saved).
@@ -108,6 +111,7 @@ class SectionLibrary {
   SectionLibraryOptions options_;
   std::string problem_key_;
   std::vector<std::unique_ptr<Slot>> slots_;
+  std::vector<std::size_t> twins_;
   double tables_estimate_bytes_ = 0.0;
   bool streams_tables_ = false;
   mutable std::atomic<int> engine_builds_{0};

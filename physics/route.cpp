@@ -74,4 +74,14 @@ Route slice_route(const Route& route, double from_m, double to_m) {
   return Route(std::move(out), route.km_post_m(from_m), direction, name(from_m), name(to_m));
 }
 
+std::vector<double> track_key(const Route& route) {
+  std::vector<double> key;
+  key.reserve(7 * route.segments().size());
+  for (const RouteSegment& s : route.segments()) {
+    key.insert(key.end(), {s.start_m, s.end_m, s.gradient_permille, s.curve_radius_m,
+                           s.speed_limit_ms, s.curve_N_per_kN, s.tunnel_drag_N_per_kN_kmh2});
+  }
+  return key;
+}
+
 }  // namespace ecorail::physics

@@ -70,4 +70,9 @@ class Route {
 // part between two timing points.
 Route slice_route(const Route& route, double from_m, double to_m);
 
+// The fields of every segment of the route, in order: two routes drive alike (same speed
+// envelope, motion and hence the same DP tables and runs) exactly when their tracks are equal.
+// Names and kilometre posts are labels and are not part of it. A key for maps of twins.
+std::vector<double> track_key(const Route& route);
+
 }  // namespace ecorail::physics

@@ -2,14 +2,16 @@
 # The sanitizer job and the fuzz smoke run of CI (docs/reliability.md), after the README's build
 # and tests.
 #   ci (default)  one clang build in build-san: AddressSanitizer + UndefinedBehaviorSanitizer on
-#                 everything, the library also with libFuzzer's coverage (fuzzer-no-link), so
-#                 the same build runs the tests of ASAN_TESTS (default: data physics fitting
-#                 output; dp's and the fleet rooms' large grids take minutes under ASan and their
-#                 code runs in these rooms' tests, policy's 36 s are left to its fuzz harness and
-#                 ASAN_TESTS="policy") and every fuzz harness for FUZZ_SECONDS
-#                 (default 3) on its seed corpus; ASAN_GTEST_FILTER picks the cases (default:
-#                 all but five calibrations of 5-25 s each under ASan, which the main tests run;
-#                 a Ceres calibration with a Huber loss stays). One extra build keeps CI inside
+#                 the rooms it needs, the library also with libFuzzer's coverage
+#                 (fuzzer-no-link), so the same build runs the tests of ASAN_TESTS (default: data
+#                 physics fitting) and every fuzz harness for FUZZ_SECONDS (default 3) on its seed
+#                 corpus. Each test program and harness links only the rooms it includes
+#                 (cmake/EcorailRooms.cmake), so this build compiles physics, data, dp, fitting,
+#                 policy and power, not the fleet, service, recovery and output rooms: their code
+#                 runs in the main tests, and under ASan with ASAN_TESTS="... output" (or policy,
+#                 dp, ...), which builds what those need. ASAN_GTEST_FILTER picks the cases
+#                 (default: all but five calibrations of 5-25 s each under ASan, which the main
+#                 tests run; a Ceres calibration with a Huber loss stays). This keeps CI inside
 #                 its budget.
 #   asan          GCC, AddressSanitizer + UBSan (-O1 -g) in build-asan, tests of ASAN_TESTS: the
 #                 build where Eigen's allocation met Debian's Ceres (docs/reliability.md)
@@ -29,7 +31,7 @@ san="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 # Leaks are not checked: glog (through Ceres) and libgomp keep allocations until exit.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-default_rooms="data physics fitting output"
+default_rooms="data physics fitting"
 # Line tables are all a sanitizer report needs (file:line in every frame) and cost a quarter less
 # compile time than full -g in the CI build; the asan mode keeps -g for a debugger.
 lines="-gline-tables-only"

@@ -6,7 +6,6 @@
 // ecorail's own table carries the curve radius that calibrate reads.
 #include <gtest/gtest.h>
 
-#include <sstream>
 
 #include "data/input_error.hpp"
 #include "fitting/calibration.hpp"
@@ -14,7 +13,6 @@
 #include "fitting/log_reader.hpp"
 #include "fitting/synthetic_log.hpp"
 #include "fitting_test_support.hpp"
-#include "output/profile_writers.hpp"
 
 namespace ecorail::fitting {
 namespace {
@@ -106,29 +104,6 @@ TEST(Calibration, NonConvergedFitIsNotTheResult) {
   const Summary ok = calibrate({read_log(test::published_table("seed_profile_A6_A8_220s.csv"))},
                                test::reference_train(), {});
   EXPECT_TRUE(ok.converged_primary().fit.converged());
-}
-
-TEST(OwnTable, CurveRadiusReachesTheCalibration) {
-  // ecorail's per-second table carries the curve radius, and calibrate reads it from there.
-  output::Timeline rows;
-  for (int k = 0; k < 4; ++k) {
-    output::TimelinePoint p;
-    p.t_s = k + 1.0;
-    p.s_m = 10.0 * (k + 1);
-    p.v_ms = 10.0;
-    p.force_N = 20000.0;
-    p.speed_limit_ms = 20.0;
-    p.curve_radius_m = k < 2 ? 0.0 : 350.0;
-    rows.push_back(p);
-  }
-  std::ostringstream csv;
-  output::write_profile_csv(csv, rows);
-  const Log log = parse_log(csv.str(), "own.csv");
-  EXPECT_EQ(log.format, LogFormat::Published);
-  EXPECT_TRUE(log.has_curve);
-  EXPECT_DOUBLE_EQ(log.rows[1].curve_radius_m, 0.0);
-  EXPECT_DOUBLE_EQ(log.rows[2].curve_radius_m, 350.0);
-  EXPECT_TRUE(log.has_braking);  // and the braking force, so no braking is guessed
 }
 
 }  // namespace

@@ -18,7 +18,6 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
-#include "fleet/search_support.hpp"
 #include "physics/motion.hpp"
 #include "physics/simulator.hpp"
 #include "physics/speed_envelope.hpp"
@@ -33,9 +32,15 @@ struct Draws {
   std::uint64_t seed;
   std::uint64_t edit = 0;
   int k = 0;
+  // A counter-based draw (splitmix64 of seed, edit, k and the salt): the same programs on
+  // every run and platform, keyed by what they are for.
   double uniform() {
-    return fleet::uniform01(
-        fleet::counter_draw(seed, edit, static_cast<std::uint64_t>(k++), 0, kSalt));
+    std::uint64_t z = seed ^ (edit * 0x9E37'79B9'7F4A'7C15ULL) ^
+                      (static_cast<std::uint64_t>(k++) * 0xBF58'476D'1CE4'E5B9ULL) ^ kSalt;
+    z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
   }
   std::size_t index(std::size_t n) {
     return std::min(n - 1, static_cast<std::size_t>(uniform() * static_cast<double>(n)));
