@@ -134,7 +134,8 @@ void run_optimise(const TimetableArgs& a) {
       bad("--per-train-patterns",
           "--model " + energy::models_with(&energy::ModelInputs::per_train_trips) +
               " (the per-train search prices one train's pattern against the fleet's power "
-              "balance; the other models price one trip under every train); got '" +
+              "balance; the overlap model has none and the network balance lays one trip under "
+              "every train); got '" +
               a.model + "'");
   }
   if (a.optimise != "headways" && a.optimise != "pattern")
