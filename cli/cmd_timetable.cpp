@@ -13,6 +13,7 @@
 #include "data/atomic_file.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
+#include "energy/model_registry.hpp"
 #include "fleet/timetable_study.hpp"
 #include "output/fleet_outputs.hpp"
 #include "output/timetable_json.hpp"
@@ -124,30 +125,23 @@ void run_evaluate(const TimetableArgs& a) {
 }
 
 void run_optimise(const TimetableArgs& a) {
-  fleet::StudyOptimiseOptions so;
-  so.per_train_patterns = a.per_train_patterns;
-  if (a.per_train_patterns) {
+  fleet::StudyOptimiseOptions so = a.search;
+  if (so.per_train_patterns) {
     // Per-train patterns are a pattern optimisation: the flag implies --optimise pattern.
     if (a.optimise_given && a.optimise != "pattern")
       bad("--per-train-patterns", "--optimise pattern (per-train patterns re-time each train)");
-    if (a.model != "power-flow" && a.model != "sections")
+    if (energy::is_energy_model(a.model) && !energy::model_inputs(a.model).per_train_trips)
       bad("--per-train-patterns",
-          "--model power-flow or sections (the per-train search prices one train's pattern "
-          "against the fleet's power balance; the overlap model has none and the network "
-          "balance lays one trip under every train); got '" +
+          "--model " + energy::models_with(&energy::ModelInputs::per_train_trips) +
+              " (the per-train search prices one train's pattern against the fleet's power "
+              "balance; the overlap model has none and the network balance lays one trip under "
+              "every train); got '" +
               a.model + "'");
   }
   if (a.optimise != "headways" && a.optimise != "pattern")
     bad("--optimise", "headways or pattern; got '" + a.optimise + "'");
-  so.pattern = a.optimise == "pattern" || a.per_train_patterns;
+  so.pattern = a.optimise == "pattern" || so.per_train_patterns;
   fleet::HeadwayOptimiserOptions& o = so.headways;
-  o.seed = a.seed;
-  o.time_limit_s = a.time_limit_s;
-  o.restarts = a.restarts;
-  o.rounds = a.rounds;
-  o.moves_per_run = a.moves;
-  o.anneal_step_s = a.anneal_step_s;
-  o.gap_fraction = a.gap;
   o.threads = a.problem.threads;
   require_valid_flags(o, {{"restarts", "--restarts"},
                           {"rounds", "--rounds"},
@@ -186,7 +180,7 @@ void run_optimise(const TimetableArgs& a) {
   print_energy(r.result.evaluation, "timetable optimise");
   std::printf("  %s\n", r.result.summary.BriefReport().c_str());
   if (a.full_report) std::printf("%s", r.result.summary.FullReport().c_str());
-  write_outputs(a, s, r.result.evaluation, output::timetable_optimisation_json(s, r, a.seed));
+  write_outputs(a, s, r.result.evaluation, output::timetable_optimisation_json(s, r, o.seed));
 }
 
 }  // namespace
@@ -207,27 +201,29 @@ void add_timetable_command(CLI::App& app) {
   ev->callback([] { run_evaluate(eval_args); });
   auto* op = cmd->add_subcommand("optimise", "headways that minimise the substation energy");
   add_fleet_options(op, opt_args);
-  op->add_option("--seed", opt_args.seed, "random seed")->capture_default_str();
-  op->add_option("--time-limit", opt_args.time_limit_s,
+  op->add_option("--seed", opt_args.search.headways.seed, "random seed")->capture_default_str();
+  op->add_option("--time-limit", opt_args.search.headways.time_limit_s,
                  "seconds of the whole search, polish included (0: none)")
       ->capture_default_str();
-  op->add_option("--gap", opt_args.gap,
+  op->add_option("--gap", opt_args.search.headways.gap_fraction,
                  "CONVERGENCE only when the proven gap is within this fraction of the substation "
                  "energy")
       ->capture_default_str();
-  op->add_option("--restarts", opt_args.restarts, "annealing runs per start")
+  op->add_option("--restarts", opt_args.search.headways.restarts, "annealing runs per start")
       ->capture_default_str();
-  op->add_option("--moves", opt_args.moves, "annealing moves per run")->capture_default_str();
-  op->add_option("--rounds", opt_args.rounds,
+  op->add_option("--moves", opt_args.search.headways.moves_per_run, "annealing moves per run")
+      ->capture_default_str();
+  op->add_option("--rounds", opt_args.search.headways.rounds,
                  "further annealing rounds after the first when no --time-limit is given (with "
                  "one, rounds run until it)")
       ->capture_default_str();
-  op->add_option("--anneal-step", opt_args.anneal_step_s, "time step of the annealing (s)")
+  op->add_option("--anneal-step", opt_args.search.headways.anneal_step_s,
+                 "time step of the annealing (s)")
       ->capture_default_str();
   op->add_option("--optimise", opt_args.optimise,
                  "headways (pattern fixed) or pattern (dwells and running times too)")
       ->capture_default_str();
-  op->add_flag("--per-train-patterns", opt_args.per_train_patterns,
+  op->add_flag("--per-train-patterns", opt_args.search.per_train_patterns,
                "each train its own dwells and running times (implies --optimise pattern; "
                "power-flow and sections models)");
   input_files(op, {"--power-supply"});

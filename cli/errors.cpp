@@ -92,6 +92,14 @@ const char* flag_of(const Error& e) {
 int report(const Error& e) {
   const auto* std_error = dynamic_cast<const std::exception*>(&e);
   const std::string what = std_error ? std_error->what() : std::string(error_kind_name(e.kind()));
+  if (const auto* rung = dynamic_cast<const policy::LadderRungError*>(&e)) {
+    // A ladder rung the engine cannot solve: the nominal time (--time) or an offset.
+    if (rung->offset_s() == 0.0)
+      return fail(2, data::InputError("command line", 0, "--time", what).what());
+    return fail(2, data::InputError("command line", 0, "--lambda-ladder",
+                                    "offsets whose running times the engine solves; " + what)
+                       .what());
+  }
   if (const auto* delay = dynamic_cast<const recovery::DelayInputError*>(&e)) {
     // The argument of `delay` it names: the plan (its file, or the reference plan) or a flag.
     const std::string& field = delay->field();
@@ -198,14 +206,6 @@ int run_reporting_errors(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
-  } catch (const policy::LadderRungError& e) {
-    if (e.offset_s() == 0.0) {
-      return fail(2, data::InputError("command line", 0, "--time", e.what()).what());
-    }
-    return fail(2, data::InputError(
-                       "command line", 0, "--lambda-ladder",
-                       std::string("offsets whose running times the engine solves; ") + e.what())
-                       .what());
   } catch (const Error& e) {
     return report(e);
   } catch (const std::exception& e) {

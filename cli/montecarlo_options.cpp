@@ -62,21 +62,13 @@ void check_day_memory(std::uint64_t days, std::size_t stations) {
 recovery::MonteCarloOptions simulation_options(const MonteCarloArgs& a) {
   if (a.days < 1 || a.days > 100000000) bad("--days", "a number of days from 1 to 1e8");
   if (a.seed < 0) bad("--seed", "a seed >= 0");
-  recovery::MonteCarloOptions o;
+  recovery::MonteCarloOptions o = a.sim;
   const auto policy = recovery::recovery_policy_from_name(a.recovery);
   if (!policy) bad("--recovery", "exact, exact-punctual or rule; got '" + a.recovery + "'");
   o.recovery = *policy;
   std::string why;
   if (!recovery::parse_delay_tail(a.tail, o.delays, &why)) bad("--tail", why);
   o.seed = static_cast<std::uint64_t>(a.seed);
-  o.early_s = a.early_s;
-  o.run_early_s = a.run_early_s;
-  o.min_dwell_s = a.min_dwell_s;
-  o.takeover_s = a.takeover_s;
-  o.punctual_s = a.punctual_s;
-  o.separation_s = a.separation_s;
-  o.knot_step_s = a.knot_step_s;
-  o.bin_step_s = a.step_s;
   require_valid(o);
   if (!(a.frontier_span_s >= 10.0 && a.frontier_span_s <= 600.0))
     bad("--frontier-span", "a span in [10, 600] s");
@@ -98,9 +90,9 @@ recovery::PlanAdjustmentOptions adjustment_options(const MonteCarloArgs& a) {
     adj.extra_dwells_s = parse_list(a.extra_dwells, "--extra-dwells");
     adj.run_early_s = parse_list(a.run_early_values, "--run-early-values");
     for (double b : adj.run_early_s)
-      if (!(b >= 0.0 && b <= a.early_s))
+      if (!(b >= 0.0 && b <= a.sim.early_s))
         bad("--run-early-values", "offsets within [0, --early]; got '" + a.run_early_values + "'");
-    if (a.run_early_s != 0.0) bad("--run-early", "--run-early-values with --adjust");
+    if (a.sim.run_early_s != 0.0) bad("--run-early", "--run-early-values with --adjust");
     adj.target_punctuality = a.target;
     adj.search_days = static_cast<std::uint64_t>(std::max(0LL, a.search_days));
     adj.threads = a.problem.threads;
@@ -123,27 +115,27 @@ void add_montecarlo_options(CLI::App* cmd, MonteCarloArgs& a) {
   cmd->add_option("--tail", a.tail,
                   "delays over 10 s: exponential:MEAN (10 s + exponential) or uniform:LOW:HIGH")
       ->capture_default_str();
-  cmd->add_option("--early", a.early_s, "trains may arrive and depart this early (s)")
+  cmd->add_option("--early", a.sim.early_s, "trains may arrive and depart this early (s)")
       ->capture_default_str();
-  cmd->add_option("--run-early", a.run_early_s,
+  cmd->add_option("--run-early", a.sim.run_early_s,
                   "run the plan this much ahead of the timetable, within --early (s)")
       ->capture_default_str();
   cmd->add_option("--run-early-values", a.run_early_values,
                   "operating offsets searched by --adjust (s)")
       ->capture_default_str();
-  cmd->add_option("--min-dwell", a.min_dwell_s, "shortest dwell at a stop (s)")
+  cmd->add_option("--min-dwell", a.sim.min_dwell_s, "shortest dwell at a stop (s)")
       ->capture_default_str();
-  cmd->add_option("--takeover", a.takeover_s,
+  cmd->add_option("--takeover", a.sim.takeover_s,
                   "a delay over this is not recovered: the next service takes over (s)")
       ->capture_default_str();
-  cmd->add_option("--punctual", a.punctual_s, "an arrival this late is still punctual (s)")
+  cmd->add_option("--punctual", a.sim.punctual_s, "an arrival this late is still punctual (s)")
       ->capture_default_str();
-  cmd->add_option("--separation", a.separation_s,
+  cmd->add_option("--separation", a.sim.separation_s,
                   "least time between departures from a station (s; default: from the cap)");
-  cmd->add_option("--knot-step", a.knot_step_s,
+  cmd->add_option("--knot-step", a.sim.knot_step_s,
                   "section runs precomputed every this many seconds of running time")
       ->capture_default_str();
-  cmd->add_option("--step", a.step_s, "power-flow time step (s, divides 1 s)")
+  cmd->add_option("--step", a.sim.bin_step_s, "power-flow time step (s, divides 1 s)")
       ->capture_default_str();
   cmd->add_option("--shard", a.shard, "simulate slice i of N of the days (i/N)");
   cmd->add_flag("--adjust", a.adjust,

@@ -23,11 +23,11 @@ struct MonteCarloArgs {
   long long seed = 1;
   std::string recovery = "exact";
   std::string tail = "exponential:30";
-  double run_early_s = 0.0;
+  // --early, --run-early, --min-dwell, --takeover, --punctual, --separation, --knot-step and
+  // --step set these fields of the simulator's options (and take their defaults from them);
+  // simulation_options completes them.
+  recovery::MonteCarloOptions sim;
   std::string run_early_values = "0";
-  double early_s = 10.0, min_dwell_s = 30.0, takeover_s = 120.0, punctual_s = 10.0;
-  double separation_s = -1.0;
-  double knot_step_s = 1.0, step_s = 0.1;
   double frontier_span_s = 60.0;
   std::string shard;
   std::string cache_dir;

@@ -75,31 +75,36 @@ energy::EnergyModelOptions model_options(const TimetableArgs& a) {
   if (!energy::is_energy_model(a.model))
     bad("--model", energy::energy_model_names() + "; got '" + a.model + "'");
   o.model = a.model;
+  const energy::ModelInputs reads = energy::model_inputs(a.model);
   const auto variant = energy::overlap_variant_from_name(a.overlap);
   if (!variant) bad("--overlap", "ahead or either; got '" + a.overlap + "'");
   o.overlap = *variant;
-  o.time_step_s = a.step_s;
+  const bool step_given = a.step_option != nullptr && a.step_option->count() > 0;
+  o.time_step_s = step_given ? a.step_s : reads.default_time_step_s;
   o.section_boundaries_m = a.sections_at_m;
-  // A flag the chosen model does not read is refused, never ignored.
+  // A flag the chosen model does not read is refused, never ignored (energy::ModelInputs).
+  using energy::ModelInputs;
+  auto refuse = [](const char* flag, bool ModelInputs::*input, const char* what) {
+    bad(flag, "--model " + energy::models_with(input) + " (the other models have no " + what + ")");
+  };
   const bool overlap_given = a.overlap_option != nullptr && a.overlap_option->count() > 0;
-  if (overlap_given && a.model != "overlap")
-    bad("--overlap", "--model overlap (the other models have no overlap variant)");
-  if (!a.sections_at_m.empty() && a.model != "sections")
-    bad("--sections-at", "--model sections (the other models have no supply sections)");
-  if (a.model == "network") {
+  if (overlap_given && !reads.overlap_variant)
+    refuse("--overlap", &ModelInputs::overlap_variant, "overlap variant");
+  if (!a.sections_at_m.empty() && !reads.section_boundaries)
+    refuse("--sections-at", &ModelInputs::section_boundaries, "supply sections");
+  if (reads.power_supply) {
     if (a.power_supply.empty())
-      bad("--power-supply", "a power-supply file (TOML) for --model network");
-    if (a.step_option == nullptr || a.step_option->count() == 0)
-      o.time_step_s = energy::kNetworkTimeStep_s;
+      bad("--power-supply", "a power-supply file (TOML) for --model " + a.model);
     o.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(a.power_supply));
   } else if (!a.power_supply.empty()) {
-    bad("--power-supply", "--model network (the other models have no supply network)");
+    refuse("--power-supply", &ModelInputs::power_supply, "supply network");
   }
-  if (a.model == "sections" && o.section_boundaries_m.empty())
+  if (!a.voltage_plot.empty() && !reads.power_supply)
+    refuse("--voltage-plot", &ModelInputs::power_supply, "line voltages");
+  if (reads.section_boundaries && o.section_boundaries_m.empty())
     bad("--sections-at",
-        "at least one supply-section boundary (m from the first station) for "
-        "--model sections");
+        "at least one supply-section boundary (m from the first station) for --model " + a.model);
   // --separation is a flag: a value (--separation=-5) would silently read as "off".
   if (const CLI::Option* sep = a.service_separation)
     for (const std::string& r : sep->results())
@@ -110,7 +115,7 @@ energy::EnergyModelOptions model_options(const TimetableArgs& a) {
       !a.service.separation)
     bad("--train-length", "--separation (the train length is the separation check's)");
   std::string why;
-  if (!o.IsValid(&why)) bad(a.model == "sections" ? "--step/--sections-at" : "--step", why);
+  if (!o.IsValid(&why)) bad(reads.section_boundaries ? "--step/--sections-at" : "--step", why);
   return o;
 }
 
@@ -214,8 +219,6 @@ fleet::TimetableStudy make_study(const TimetableArgs& a) {
   targets.insert(targets.end(), gtfs.begin(), gtfs.end());  // no GTFS file is another's path
   check_output_targets(targets);
   check_service_args(a.service);
-  if (!a.voltage_plot.empty() && a.model != "network")
-    bad("--voltage-plot", "--model network (only the network model has line voltages)");
   Problem p = load_fleet_problem(a.problem);
   const std::string from = a.problem.from.empty() ? p.line.stations.front().name : a.problem.from;
   const std::string to = a.problem.to.empty() ? p.line.stations.back().name : a.problem.to;
@@ -241,7 +244,6 @@ fleet::TimetableStudy make_study(const TimetableArgs& a) {
       throw data::InputError(a.power_supply, 0, "position", what.substr(14));
     throw;
   }
-  return fleet::TimetableStudy(setup);  // not reached: every catch above throws
 }
 
 }  // namespace ecorail::cli

@@ -29,18 +29,14 @@ struct TimetableArgs {
   std::string model = "power-flow";
   std::string overlap = "ahead";
   double step_s = 0.01;
-  double gap = 1e-4;  // optimise --gap
   std::vector<double> sections_at_m;
   std::string headways_file, departures_file;
   bool uniform = false;
-  std::uint64_t seed = 1;
-  double time_limit_s = 0.0;
-  int restarts = 2;
-  int rounds = 0;  // optimise --rounds: anytime rounds without a time limit
-  long moves = 2000000;
-  double anneal_step_s = 1.0;
+  // optimise: --seed, --time-limit, --gap, --restarts, --moves, --rounds, --anneal-step and
+  // --per-train-patterns set these fields (and take their defaults from them); --optimise and
+  // --threads complete them.
+  fleet::StudyOptimiseOptions search;
   std::string optimise = "headways";
-  bool per_train_patterns = false;
   bool optimise_given = false;  // --optimise on the command line (not its default)
   std::string json, csv, xlsx, diagram, power_plot;
   std::string window = "0:7200";

@@ -33,7 +33,7 @@ struct CruisePolishOptions {
   double min_cruise_m = 2000.0;
   double short_phase_m = 200.0;         // phases inside the cruise shorter than this are dropped
   double search_half_width_m = 3000.0;  // (not used by the price search; kept for callers)
-  double search_tolerance_m = 0.5;      // golden section stops at this bracket width
+  double search_tolerance_m = 0.5;      // the simplex stops when every vertex is this close
   double search_step_m = 0.5;           // RK4 step of the search's re-simulations
   // The search under one time price: the RK4 step of its re-simulations (at least
   // search_step_m), the first simplex's size, its budget per price, and how close to the time

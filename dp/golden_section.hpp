@@ -1,9 +1,9 @@
 // Golden-section search for the minimum of a function that is unimodal on [a, b]: each step
 // keeps the part of the bracket that holds the smaller of two interior values and re-uses the
 // other one, so every step costs one evaluation. Used where a derivative is not at hand: the
-// coasting point of a held cruise (dp/cruise_polish.cpp) and the multiplier of a pair bound's
-// dual (timetable/pair_bound.cpp). An infeasible point may score +inf; it moves the bracket
-// away from itself.
+// time a stop between two parts of a timing-point journey is passed (dp/timing_journey.cpp)
+// and the multiplier of a pair bound's dual (energy/pair_bound.cpp). An infeasible point may score
+// +inf; it moves the bracket away from itself.
 #pragma once
 
 #include <cmath>

@@ -147,7 +147,7 @@ struct DwellRange {
 // second of dwell is a second less of running, and energy falls with running time, so every
 // dwell goes to its minimum: the journey is solved with the minimum dwells and the running time
 // that leaves. (Timetable couplings, such as regenerated energy shared between trains, are what
-// make longer dwells worth having; they live in timetable/.)
+// make longer dwells worth having; they live in fleet/.)
 JourneySolution solve_journey_free_dwells(const SectionLibrary& library, std::size_t first,
                                           std::size_t last, const std::vector<DwellRange>& dwells,
                                           double trip_time_s, const JourneyOptions& options);

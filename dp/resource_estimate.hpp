@@ -1,8 +1,8 @@
 // Resource estimate of a section engine, made before anything is allocated. A grid is
 // stages x speed nodes; each node holds kControlCount transitions and its share of the value
 // functions a lambda search keeps, so memory grows like (length / ds) x (top speed / dv). A
-// 1 cm step used to run for minutes and then die of std::bad_alloc or the kernel's OOM killer;
-// now SectionEngine refuses such a grid at once with ResourceLimitError, which states the
+// 1 cm step would run for minutes and then die of std::bad_alloc or the kernel's OOM killer;
+// SectionEngine refuses such a grid at once with ResourceLimitError, which states the
 // estimate, the memory this process can have (physical memory, bounded by the address-space
 // limit `ulimit -v`) and an estimate of the build time.
 #pragma once

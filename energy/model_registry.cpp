@@ -26,16 +26,34 @@ std::mutex& registry_mutex() {
 
 std::vector<RegisteredModel>& registry() {
   static std::vector<RegisteredModel> models = {
-      {"power-flow", "one supply section, min(regenerated, traction) power per time bin",
-       factory<PowerFlowModel>()},
-      {"overlap", "the contest's time-overlap rule between neighbours (exact intervals)",
-       factory<OverlapEnergyModel>()},
-      {"sections", "the power-flow balance in each supply section (--sections-at)",
-       factory<PowerFlowModel>()},
-      {"network", "the DC traction network, a load flow at every time bin (--power-supply)",
-       factory<NetworkModel>()},
+      {"power-flow",
+       "one supply section, min(regenerated, traction) power per time bin",
+       factory<PowerFlowModel>(),
+       {.per_train_trips = true}},
+      {"overlap",
+       "the contest's time-overlap rule between neighbours (exact intervals)",
+       factory<OverlapEnergyModel>(),
+       {.overlap_variant = true}},
+      {"sections",
+       "the power-flow balance in each supply section (--sections-at)",
+       factory<PowerFlowModel>(),
+       {.section_boundaries = true, .per_train_trips = true}},
+      {"network",
+       "the DC traction network, a load flow at every time bin (--power-supply)",
+       factory<NetworkModel>(),
+       {.power_supply = true, .default_time_step_s = kNetworkTimeStep_s}},
   };
   return models;
+}
+
+// "a", "a or b", "a, b or c", each between quotes.
+std::string listed(const std::vector<std::string>& names, const std::string& quote) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
+    out += quote + names[i] + quote;
+  }
+  return out;
 }
 
 }  // namespace
@@ -46,13 +64,22 @@ std::vector<RegisteredModel> energy_models() {
 }
 
 std::string energy_model_names() {
-  const std::vector<RegisteredModel> models = energy_models();
-  std::string out;
-  for (std::size_t i = 0; i < models.size(); ++i) {
-    if (i > 0) out += i + 1 == models.size() ? " or " : ", ";
-    out += models[i].name;
-  }
-  return out;
+  std::vector<std::string> names;
+  for (const RegisteredModel& m : energy_models()) names.push_back(m.name);
+  return listed(names, "");
+}
+
+ModelInputs model_inputs(const std::string& name) {
+  for (const RegisteredModel& m : energy_models())
+    if (m.name == name) return m.inputs;
+  throw std::invalid_argument("model: expected " + energy_model_names() + "; got '" + name + "'");
+}
+
+std::string models_with(bool ModelInputs::*input, const std::string& quote) {
+  std::vector<std::string> names;
+  for (const RegisteredModel& m : energy_models())
+    if (m.inputs.*input) names.push_back(m.name);
+  return listed(names, quote);
 }
 
 bool is_energy_model(const std::string& name) {

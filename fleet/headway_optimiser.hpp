@@ -92,8 +92,11 @@ struct HeadwayOptimiserSummary {
   double wall_s = 0.0;
   bool time_limit_reached = false;
   std::string message;
-  // A timetable to use: converged, or stopped by a budget with its gap stated.
-  bool IsSolutionUsable() const { return termination != Termination::FAILURE; }
+  // A timetable to use (dp/termination.hpp's rule): converged, or stopped by a budget with
+  // every limit kept and its gap stated.
+  bool IsSolutionUsable() const {
+    return dp::is_usable(termination, /*budget_stop_keeps_constraints=*/true);
+  }
   std::string BriefReport() const;
   std::string FullReport() const;
 };

@@ -1,7 +1,7 @@
 // Outputs of the fleet timetable commands: the timetable (train, station, arrival, departure)
 // as CSV and XLSX, the energy breakdown as JSON, the train diagram (time-distance lines of all
 // trains, SVG or PNG by gnuplot) and the power plot (total traction, regenerated, used and
-// substation power over a time window). The writers take what the timetable room computed and
+// substation power over a time window). The writers take what fleet/ and energy/ computed and
 // format it; they compute nothing.
 #pragma once
 

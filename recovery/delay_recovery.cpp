@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "dp/lambda_bracket.hpp"
 #include "dp/time_target.hpp"
 #include "recovery/delay_steps.hpp"
 
@@ -221,23 +222,26 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
       return rt;
     };
     const double t_close = rule[k];
-    double lo = times.min_s[k], hi = t_close;
+    const double lo = times.min_s[k], hi = t_close;
     DelayRecoveryResult fastest = lay_out_and_follow(with_last(lo), options);
     DelayRecoveryResult best = lay_out_and_follow(with_last(hi), options);
     const double least = fastest.summary.total_lateness_s;
     int steps = 0;
     if (best.summary.total_lateness_s > least + kLatenessTie_s) {
       best = std::move(fastest);
-      for (; steps < 8 && hi - lo > 0.1; ++steps) {
-        const double mid = 0.5 * (lo + hi);
-        DelayRecoveryResult r = lay_out_and_follow(with_last(mid), options);
-        if (r.summary.total_lateness_s <= least + kLatenessTie_s) {
-          lo = mid;
-          best = std::move(r);
-        } else {
-          hi = mid;
-        }
-      }
+      // The library's root search on the sign alone (+infinity: within the tie, keep it and go
+      // longer), which bisects when an end is infinite: 8 steps at most, to 0.1 s.
+      const double inf = std::numeric_limits<double>::infinity();
+      dp::LambdaBracket bracket(
+          [&](double t) {
+            DelayRecoveryResult r = lay_out_and_follow(with_last(t), options);
+            if (r.summary.total_lateness_s > least + kLatenessTie_s) return -inf;
+            best = std::move(r);
+            return inf;
+          },
+          lo, inf, hi, -inf, 8);
+      bracket.narrow([] { return false; }, 0.1);
+      steps = bracket.evaluations();
     }
     best.summary.recovery_mode = "lateness-first";
     best.summary.energy_first_energy_kJ = out.summary.recovery_energy_kJ;

@@ -38,7 +38,7 @@ struct ServicePlan {
 };
 
 // The plan of a pattern: the energy-optimal split of trip_time_s - sum(dwells) over the
-// sections (the fleet's default pattern, timetable/fleet_pattern.hpp, solved the same way).
+// sections (the fleet's default pattern, fleet/fleet_pattern.hpp, solved the same way).
 ServicePlan optimal_split_plan(const dp::SectionLibrary& library,
                                const std::vector<double>& dwells_s, double trip_time_s,
                                const dp::JourneyOptions& options);

@@ -288,23 +288,23 @@ class timetable:  # submodule ecorail.timetable
     def evaluate(line: Line, train: Train, *, departures_s: Optional[Sequence[int]] = None,
                  headways_s: Optional[Sequence[int]] = None, model: str = "power-flow",
                  overlap: str = "ahead", step_s: float = ..., sections_at_m: Sequence[float] = (),
-                 power_supply: Optional[PathLike] = None, trains: int = 100, span_s: int = 63900,
-                 headway_s: Range = (120, 660), trip_time_s: float = 2086.0,
-                 dwell_s: float = 30.0, dwell_range_s: Range = (30, 45),
+                 power_supply: Optional[PathLike] = None, trip_time_s: float = 2086.0,
+                 dwell_s: float = 30.0, trains: int = 100, span_s: int = 63900,
+                 headway_s: Range = (120, 660), dwell_range_s: Range = (30, 45),
                  peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
                  offpeak_headway_s: Range = (300, 660), ds_m: float = 5.0, dv_kmh: float = 0.2,
                  threads: int = 0) -> "timetable.FleetResult": ...
     @staticmethod
     def optimise(line: Line, train: Train, *, model: str = "power-flow", overlap: str = "ahead",
                  step_s: float = ..., sections_at_m: Sequence[float] = (),
-                 power_supply: Optional[PathLike] = None, trains: int = 100, span_s: int = 63900,
-                 headway_s: Range = (120, 660), trip_time_s: float = 2086.0,
-                 dwell_s: float = 30.0, dwell_range_s: Range = (30, 45),
+                 power_supply: Optional[PathLike] = None, trip_time_s: float = 2086.0,
+                 dwell_s: float = 30.0, trains: int = 100, span_s: int = 63900,
+                 headway_s: Range = (120, 660), dwell_range_s: Range = (30, 45),
                  peaks: Sequence[Range] = (), peak_headway_s: Range = (120, 150),
-                 offpeak_headway_s: Range = (300, 660), seed: int = 1, time_limit_s: float = 0.0,
+                 offpeak_headway_s: Range = (300, 660), ds_m: float = 5.0, dv_kmh: float = 0.2,
+                 threads: int = 0, seed: int = 1, time_limit_s: float = 0.0,
                  restarts: int = 2, rounds: int = 0, moves: int = 2000000, anneal_step_s: float = 1.0,
                  gap: float = 1e-4, pattern: bool = False, per_train_patterns: bool = False,
-                 ds_m: float = 5.0, dv_kmh: float = 0.2, threads: int = 0,
                  progress: Progress = None) -> "timetable.FleetResult": ...
 
 class delay:  # submodule ecorail.delay

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <tuple>
 
 #include "data/route_builder.hpp"
 #include "energy/model_registry.hpp"
@@ -83,30 +84,36 @@ energy::EnergyModelOptions model_options(const FleetArgs& a) {
   if (!energy::is_energy_model(a.model))
     bad_argument("model", energy::energy_model_names(), "'" + a.model + "'");
   o.model = a.model;
+  const energy::ModelInputs reads = energy::model_inputs(a.model);
   const auto variant = energy::overlap_variant_from_name(a.overlap);
   if (!variant) bad_argument("overlap", "'ahead' or 'either'", "'" + a.overlap + "'");
   o.overlap = *variant;
-  o.time_step_s =
-      std::isnan(a.step_s) ? (a.model == "network" ? energy::kNetworkTimeStep_s : 0.01) : a.step_s;
+  o.time_step_s = std::isnan(a.step_s) ? reads.default_time_step_s : a.step_s;
   o.section_boundaries_m = a.sections_at_m;
-  if (a.model == "network") {
+  // An argument the chosen model does not read is refused, never ignored (as the program's
+  // flags; energy::ModelInputs).
+  using energy::models_with, energy::ModelInputs;
+  const std::string chosen = "model='" + a.model + "'";
+  if (reads.power_supply) {
     if (a.power_supply.empty()) {
-      bad_argument("power_supply", "a power-supply file (TOML) for model='network'", "None");
+      bad_argument("power_supply", "a power-supply file (TOML) for " + chosen, "None");
     }
     o.power_supply =
         std::make_shared<const power::PowerSupply>(power::load_power_supply(a.power_supply));
   } else if (!a.power_supply.empty()) {
-    bad_argument("power_supply", "model='network' (the other models have no supply network)",
+    bad_argument("power_supply",
+                 "model=" + models_with(&ModelInputs::power_supply, "'") +
+                     " (the other models have no supply network)",
                  "a file");
   }
-  // An argument the chosen model does not read is refused, never ignored (as the program's flags).
-  if (!a.sections_at_m.empty() && a.model != "sections") {
-    bad_argument("sections_at_m", "model='sections' (the other models have no supply sections)",
-                 "model='" + a.model + "'");
+  if (!a.sections_at_m.empty() && !reads.section_boundaries) {
+    bad_argument("sections_at_m",
+                 "model=" + models_with(&ModelInputs::section_boundaries, "'") +
+                     " (the other models have no supply sections)",
+                 chosen);
   }
-  if (a.model == "sections" && o.section_boundaries_m.empty()) {
-    bad_argument("sections_at_m", "at least one supply-section boundary (m) for model='sections'",
-                 "none");
+  if (reads.section_boundaries && o.section_boundaries_m.empty()) {
+    bad_argument("sections_at_m", "at least one supply-section boundary (m) for " + chosen, "none");
   }
   require_valid(o);
   return o;
@@ -270,40 +277,36 @@ PyFleet evaluate_py(FleetState& state, const FleetArgs& a, const py::object& dep
   return out;
 }
 
-// What the search is asked for besides the fleet: headway search options and whether the
-// pattern (dwells and running times, as `--optimise pattern`) or per-train patterns
-// (`--optimise per-train`) are searched too.
-struct OptimiseArgs {
-  std::uint64_t seed = 1;
-  double time_limit_s = 0.0;
-  int restarts = 2;
-  int rounds = 0;  // --rounds: further rounds after the first (without a time limit)
-  long moves = 2000000L;
-  double anneal_step_s = 1.0;
-  double gap = 1e-4;
-  bool pattern = false;             // --optimise pattern
-  bool per_train_patterns = false;  // --per-train-patterns (a pattern search)
-};
+// The search optimise() runs, from its keyword arguments (search_kwargs below): the library's
+// own options, as `timetable optimise` binds its flags to them. pattern: the dwells and running
+// times too (`--optimise pattern`); per_train_patterns implies it.
+fleet::StudyOptimiseOptions search_options(std::uint64_t seed, double time_limit_s, int restarts,
+                                           int rounds, long moves, double anneal_step_s, double gap,
+                                           bool pattern, bool per_train_patterns) {
+  fleet::StudyOptimiseOptions so;
+  so.headways.seed = seed;
+  so.headways.restarts = restarts;
+  so.headways.moves_per_run = moves;
+  so.headways.anneal_step_s = anneal_step_s;
+  so.headways.time_limit_s = time_limit_s;
+  so.headways.gap_fraction = gap;
+  so.headways.rounds = rounds;
+  so.pattern = pattern || per_train_patterns;
+  so.per_train_patterns = per_train_patterns;
+  return so;
+}
 
-PyFleet optimise_py(FleetState& state, const FleetArgs& a, const OptimiseArgs& args,
+PyFleet optimise_py(FleetState& state, const FleetArgs& a, fleet::StudyOptimiseOptions so,
                     const py::object& progress) {
   const fleet::FleetProblem problem = fleet_problem(a);
-  fleet::StudyOptimiseOptions so;
   fleet::HeadwayOptimiserOptions& o = so.headways;
-  o.seed = args.seed;
-  o.time_limit_s = args.time_limit_s;
-  o.restarts = args.restarts;
-  o.rounds = args.rounds;
-  o.moves_per_run = args.moves;
-  o.anneal_step_s = args.anneal_step_s;
-  o.gap_fraction = args.gap;
   o.threads = a.engine.threads;
-  so.pattern = args.pattern || args.per_train_patterns;
-  so.per_train_patterns = args.per_train_patterns;
-  if (args.per_train_patterns && a.model != "power-flow" && a.model != "sections") {
+  if (so.per_train_patterns && energy::is_energy_model(a.model) &&
+      !energy::model_inputs(a.model).per_train_trips) {
     bad_argument("per_train_patterns",
-                 "model='power-flow' or 'sections' (the per-train search prices one train's "
-                 "pattern against the fleet's power balance)",
+                 "model=" + energy::models_with(&energy::ModelInputs::per_train_trips, "'") +
+                     " (the per-train search prices one train's pattern against the fleet's "
+                     "power balance)",
                  "model='" + a.model + "'");
   }
   require_valid(so);
@@ -322,7 +325,7 @@ PyFleet optimise_py(FleetState& state, const FleetArgs& a, const OptimiseArgs& a
         study_for(state, problem).with_problem(problem);
     const fleet::StudyOptimisation r = s->optimise(so);
     out.evaluation = r.result.evaluation;
-    out.report = output::timetable_optimisation_json(*s, r, args.seed);
+    out.report = output::timetable_optimisation_json(*s, r, o.seed);
     const auto& sm = r.result.summary;
     out.summary = summary_of(sm);
     message = sm.message;
@@ -406,11 +409,11 @@ std::vector<double> per_train(const energy::FleetEvaluation& ev,
   return v;
 }
 
+// The model, the run and the grid of a fleet (model_kwargs, run_kwargs, grid_kwargs below) into
+// a; its problem keeps FleetArgs' defaults (set_problem sets it).
 void add_fleet_args(FleetArgs& a, const std::string& model, const std::string& overlap,
                     double step_s, std::vector<double> sections_at_m, py::object power_supply,
-                    int trains, int span_s, Range headway_s, double trip_time_s, double dwell_s,
-                    Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
-                    Range offpeak_headway_s, double ds_m, double dv_kmh, int threads) {
+                    double trip_time_s, double dwell_s, double ds_m, double dv_kmh, int threads) {
   a.model = model;
   a.overlap = overlap;
   a.step_s = step_s;
@@ -418,11 +421,58 @@ void add_fleet_args(FleetArgs& a, const std::string& model, const std::string& o
   if (!power_supply.is_none()) {
     a.power_supply = py::str(py::module_::import("os").attr("fspath")(power_supply));
   }
-  set_problem(a, trains, span_s, headway_s, dwell_range_s, std::move(peaks), peak_headway_s,
-              offpeak_headway_s);
   a.trip_time_s = trip_time_s;
   a.dwell_s = dwell_s;
   a.engine = {ds_m, dv_kmh, "traction", "hold", threads};
+}
+
+// The keyword arguments the fleet functions share, each group written once with its defaults
+// (FleetArgs' and the library's); every function's lambda takes a group's values in its order.
+auto model_kwargs() {  // model, overlap, step_s, sections_at_m, power_supply
+  const FleetArgs d;
+  return std::make_tuple(
+      py::arg("model") = d.model, py::arg("overlap") = d.overlap, py::arg("step_s") = d.step_s,
+      py::arg("sections_at_m") = std::vector<double>{}, py::arg("power_supply") = py::none());
+}
+auto run_kwargs() {  // trip_time_s, dwell_s
+  const FleetArgs d;
+  return std::make_tuple(py::arg("trip_time_s") = d.trip_time_s, py::arg("dwell_s") = d.dwell_s);
+}
+auto problem_kwargs() {  // trains, span_s, headway_s, dwell_range_s, peaks, peak/offpeak_headway_s
+  const FleetArgs d;
+  return std::make_tuple(
+      py::arg("trains") = d.trains, py::arg("span_s") = d.span_s,
+      py::arg("headway_s") = d.headway_s, py::arg("dwell_range_s") = d.dwell_range_s,
+      py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = d.peak_headway_s,
+      py::arg("offpeak_headway_s") = d.offpeak_headway_s);
+}
+auto grid_kwargs() {  // ds_m, dv_kmh, threads
+  const EngineArgs d;
+  return std::make_tuple(py::arg("ds_m") = d.ds_m, py::arg("dv_kmh") = d.dv_kmh,
+                         py::arg("threads") = d.threads);
+}
+auto search_kwargs() {  // seed, time_limit_s, restarts, rounds, moves, anneal_step_s, gap,
+                        // pattern, per_train_patterns
+  const fleet::StudyOptimiseOptions d;
+  return std::make_tuple(
+      py::arg("seed") = d.headways.seed, py::arg("time_limit_s") = d.headways.time_limit_s,
+      py::arg("restarts") = d.headways.restarts, py::arg("rounds") = d.headways.rounds,
+      py::arg("moves") = d.headways.moves_per_run,
+      py::arg("anneal_step_s") = d.headways.anneal_step_s, py::arg("gap") = d.headways.gap_fraction,
+      py::arg("pattern") = d.pattern, py::arg("per_train_patterns") = d.per_train_patterns);
+}
+
+// target.def(name, f, extras...) with the extras given as tuples (the kwargs groups above).
+template <class Target, class F, class... Groups>
+void def_with(Target& target, const char* name, F&& f, Groups&&... groups) {
+  std::apply([&](auto&&... extra) { target.def(name, std::forward<F>(f), extra...); },
+             std::tuple_cat(std::forward<Groups>(groups)...));
+}
+// The same for a constructor (py::init).
+template <class Class, class Init, class... Groups>
+void def_init_with(Class& cls, Init&& init, Groups&&... groups) {
+  std::apply([&](auto&&... extra) { cls.def(std::forward<Init>(init), extra...); },
+             std::tuple_cat(std::forward<Groups>(groups)...));
 }
 
 constexpr const char* kFleetDoc =
@@ -519,157 +569,137 @@ void bind_timetable(py::module_& m) {
           "max_late_s", [](const PySeparation& r) { return r.summary.max_late_s; },
           "Latest arrival at a stop after the timetable, s.");
 
-  py::class_<PyFleetLine>(tt, "Fleet",
-                          "The line's sections, an energy model and the pattern every train "
-                          "drives (the optimal split of trip_time_s with dwell_s at every stop), "
-                          "built once: evaluate and optimise then cost only the timetable.")
-      .def(py::init([](const PyLine& line, const PyTrain& train, const std::string& model,
-                       const std::string& overlap, double step_s, std::vector<double> sections_at_m,
-                       py::object power_supply, double trip_time_s, double dwell_s, double ds_m,
-                       double dv_kmh, int threads) {
-             FleetArgs a;
-             add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m),
-                            std::move(power_supply), 100, 63900, {120, 660}, trip_time_s, dwell_s,
-                            {30, 45}, {}, {120, 150}, {300, 660}, ds_m, dv_kmh, threads);
-             return make_fleet(line, train, a);
-           }),
-           py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
-           py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
-           py::arg("sections_at_m") = std::vector<double>{}, py::arg("power_supply") = py::none(),
-           py::arg("trip_time_s") = 2086.0, py::arg("dwell_s") = 30.0, py::arg("ds_m") = 5.0,
-           py::arg("dv_kmh") = 0.2, py::arg("threads") = 0)
-      .def(
-          "evaluate",
-          [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
-             int trains, int span_s, Range headway_s, Range dwell_range_s, std::vector<Range> peaks,
-             Range peak_headway_s, Range offpeak_headway_s) {
-            return evaluate_py(*f.state,
-                               with_problem(f, trains, span_s, headway_s, dwell_range_s,
-                                            std::move(peaks), peak_headway_s, offpeak_headway_s),
-                               departures_s, headways_s);
-          },
-          py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
-          py::arg("trains") = 100, py::arg("span_s") = 63900,
-          py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
-          py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
-          py::arg("offpeak_headway_s") = Range{300, 660},
-          "ecorail.timetable.evaluate on this fleet's sections and pattern.")
-      .def(
-          "optimise",
-          [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
-             std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
-             std::uint64_t seed, double time_limit_s, int restarts, int rounds, long moves,
-             double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
-             const py::object& progress) {
-            return optimise_py(*f.state,
-                               with_problem(f, trains, span_s, headway_s, dwell_range_s,
-                                            std::move(peaks), peak_headway_s, offpeak_headway_s),
-                               {seed, time_limit_s, restarts, rounds, moves, anneal_step_s, gap,
-                                pattern, per_train_patterns},
-                               progress);
-          },
-          py::kw_only(), py::arg("trains") = 100, py::arg("span_s") = 63900,
-          py::arg("headway_s") = Range{120, 660}, py::arg("dwell_range_s") = Range{30, 45},
-          py::arg("peaks") = std::vector<Range>{}, py::arg("peak_headway_s") = Range{120, 150},
-          py::arg("offpeak_headway_s") = Range{300, 660}, py::arg("seed") = 1,
-          py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2, py::arg("rounds") = 0,
-          py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0, py::arg("gap") = 1e-4,
-          py::arg("pattern") = false, py::arg("per_train_patterns") = false,
-          py::arg("progress") = py::none(),
-          "ecorail.timetable.optimise on this fleet's sections and pattern (the Fleet keeps its "
-          "own pattern: a pattern search runs on a study of its own).")
-      .def(
-          "separation",
-          [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
-             int trains, int span_s, Range headway_s, double train_length_m, double safety_margin_m,
-             double braking_m_s2, const std::string& follower) {
-            FleetArgs a = with_problem(f, trains, span_s, headway_s, f.args.dwell_range_s, {},
-                                       f.args.peak_headway_s, f.args.offpeak_headway_s);
-            return separation_py(*f.state, a, departures_s, headways_s, train_length_m,
-                                 safety_margin_m, braking_m_s2, follower);
-          },
-          py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
-          py::arg("trains") = 100, py::arg("span_s") = 63900,
-          py::arg("headway_s") = Range{120, 660}, py::arg("train_length_m") = 0.0,
-          py::arg("safety_margin_m") = 0.0, py::arg("braking_m_s2") = 0.0,
-          py::arg("follower") = "reoptimise",
-          "Every train of the timetable run together with safe separation v <= sqrt(2 L b), as "
-          "`ecorail timetable evaluate --separation`: L the distance to the train ahead's tail "
-          "less safety_margin_m (train_length_m, m), b = braking_m_s2 (0: the train's maximum "
-          "braking force at 10 km/h over its mass); a follower held up where waiting would "
-          "make it late is driven by follower: 'reoptimise' (energy-optimal under the cap), "
-          "'supervise' (its planned control, braked) or 'wait'. to_dict() is the energy "
-          "document's \"separation\" block.");
-
-  tt.def(
-      "evaluate",
-      [](const PyLine& line, const PyTrain& train, const py::object& departures_s,
-         const py::object& headways_s, const std::string& model, const std::string& overlap,
-         double step_s, std::vector<double> sections_at_m, py::object power_supply, int trains,
-         int span_s, Range headway_s, double trip_time_s, double dwell_s, Range dwell_range_s,
-         std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s, double ds_m,
-         double dv_kmh, int threads) {
+  py::class_<PyFleetLine> fleet_class(
+      tt, "Fleet",
+      "The line's sections, an energy model and the pattern every train drives (the optimal "
+      "split of trip_time_s with dwell_s at every stop), built once: evaluate and optimise then "
+      "cost only the timetable.");
+  def_init_with(
+      fleet_class,
+      py::init([](const PyLine& line, const PyTrain& train, const std::string& model,
+                  const std::string& overlap, double step_s, std::vector<double> sections_at_m,
+                  py::object power_supply, double trip_time_s, double dwell_s, double ds_m,
+                  double dv_kmh, int threads) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
-                       trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
-                       std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return evaluate_py(*fleet_state(line, train, a), a, departures_s, headways_s);
+                       trip_time_s, dwell_s, ds_m, dv_kmh, threads);
+        return make_fleet(line, train, a);
+      }),
+      std::make_tuple(py::arg("line"), py::arg("train"), py::kw_only()), model_kwargs(),
+      run_kwargs(), grid_kwargs());
+  def_with(
+      fleet_class, "evaluate",
+      [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
+         int trains, int span_s, Range headway_s, Range dwell_range_s, std::vector<Range> peaks,
+         Range peak_headway_s, Range offpeak_headway_s) {
+        return evaluate_py(*f.state,
+                           with_problem(f, trains, span_s, headway_s, dwell_range_s,
+                                        std::move(peaks), peak_headway_s, offpeak_headway_s),
+                           departures_s, headways_s);
       },
-      py::arg("line"), py::arg("train"), py::kw_only(), py::arg("departures_s") = py::none(),
-      py::arg("headways_s") = py::none(), py::arg("model") = "power-flow",
-      py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
-      py::arg("sections_at_m") = std::vector<double>{}, py::arg("power_supply") = py::none(),
-      py::arg("trains") = 100, py::arg("span_s") = 63900, py::arg("headway_s") = Range{120, 660},
-      py::arg("trip_time_s") = 2086.0, py::arg("dwell_s") = 30.0,
-      py::arg("dwell_range_s") = Range{30, 45}, py::arg("peaks") = std::vector<Range>{},
-      py::arg("peak_headway_s") = Range{120, 150}, py::arg("offpeak_headway_s") = Range{300, 660},
-      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
-      (std::string("The substation energy of a fleet timetable, as `ecorail timetable evaluate`: "
-                   "departures_s (whole s from the first departure) or headways_s, or uniform "
-                   "headways when neither is given.") +
-       kFleetDoc)
-          .c_str());
-  tt.def(
-      "optimise",
-      [](const PyLine& line, const PyTrain& train, const std::string& model,
-         const std::string& overlap, double step_s, std::vector<double> sections_at_m,
-         py::object power_supply, int trains, int span_s, Range headway_s, double trip_time_s,
-         double dwell_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
-         Range offpeak_headway_s, std::uint64_t seed, double time_limit_s, int restarts, int rounds,
-         long moves, double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
-         double ds_m, double dv_kmh, int threads, const py::object& progress) {
-        FleetArgs a;
-        add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
-                       trains, span_s, headway_s, trip_time_s, dwell_s, dwell_range_s,
-                       std::move(peaks), peak_headway_s, offpeak_headway_s, ds_m, dv_kmh, threads);
-        return optimise_py(*fleet_state(line, train, a), a,
-                           {seed, time_limit_s, restarts, rounds, moves, anneal_step_s, gap,
-                            pattern, per_train_patterns},
+      std::make_tuple(py::kw_only(), py::arg("departures_s") = py::none(),
+                      py::arg("headways_s") = py::none()),
+      problem_kwargs(),
+      std::make_tuple("ecorail.timetable.evaluate on this fleet's sections and pattern."));
+  def_with(
+      fleet_class, "optimise",
+      [](const PyFleetLine& f, int trains, int span_s, Range headway_s, Range dwell_range_s,
+         std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
+         std::uint64_t seed, double time_limit_s, int restarts, int rounds, long moves,
+         double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
+         const py::object& progress) {
+        return optimise_py(*f.state,
+                           with_problem(f, trains, span_s, headway_s, dwell_range_s,
+                                        std::move(peaks), peak_headway_s, offpeak_headway_s),
+                           search_options(seed, time_limit_s, restarts, rounds, moves,
+                                          anneal_step_s, gap, pattern, per_train_patterns),
                            progress);
       },
-      py::arg("line"), py::arg("train"), py::kw_only(), py::arg("model") = "power-flow",
-      py::arg("overlap") = "ahead", py::arg("step_s") = NAN,
-      py::arg("sections_at_m") = std::vector<double>{}, py::arg("power_supply") = py::none(),
+      std::make_tuple(py::kw_only()), problem_kwargs(), search_kwargs(),
+      std::make_tuple(py::arg("progress") = py::none(),
+                      "ecorail.timetable.optimise on this fleet's sections and pattern (the Fleet "
+                      "keeps its own pattern: a pattern search runs on a study of its own)."));
+  fleet_class.def(
+      "separation",
+      [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
+         int trains, int span_s, Range headway_s, double train_length_m, double safety_margin_m,
+         double braking_m_s2, const std::string& follower) {
+        FleetArgs a = with_problem(f, trains, span_s, headway_s, f.args.dwell_range_s, {},
+                                   f.args.peak_headway_s, f.args.offpeak_headway_s);
+        return separation_py(*f.state, a, departures_s, headways_s, train_length_m, safety_margin_m,
+                             braking_m_s2, follower);
+      },
+      py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
       py::arg("trains") = 100, py::arg("span_s") = 63900, py::arg("headway_s") = Range{120, 660},
-      py::arg("trip_time_s") = 2086.0, py::arg("dwell_s") = 30.0,
-      py::arg("dwell_range_s") = Range{30, 45}, py::arg("peaks") = std::vector<Range>{},
-      py::arg("peak_headway_s") = Range{120, 150}, py::arg("offpeak_headway_s") = Range{300, 660},
-      py::arg("seed") = 1, py::arg("time_limit_s") = 0.0, py::arg("restarts") = 2,
-      py::arg("rounds") = 0, py::arg("moves") = 2000000L, py::arg("anneal_step_s") = 1.0,
-      py::arg("gap") = 1e-4, py::arg("pattern") = false, py::arg("per_train_patterns") = false,
-      py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
-      py::arg("progress") = py::none(),
-      (std::string("The headways that minimise substation energy, as `ecorail timetable "
-                   "optimise`: exact DPs for the overlap models, annealing (restarts, moves, "
-                   "seed, anneal_step_s, time_limit_s in s; 0: none) + polish + a bound for "
-                   "power-flow. CONVERGENCE only when the proven gap is at most gap (a fraction of "
-                   "the substation energy); a search stopped by time_limit_s or its moves with a "
-                   "larger gap is NO_CONVERGENCE with its gap (a result: is_solution_usable). "
-                   "pattern: the dwells and running times too (`--optimise pattern`); "
-                   "per_train_patterns: each train its own pattern (power-flow and sections "
-                   "models).") +
-       kFleetDoc)
-          .c_str());
+      py::arg("train_length_m") = 0.0, py::arg("safety_margin_m") = 0.0,
+      py::arg("braking_m_s2") = 0.0, py::arg("follower") = "reoptimise",
+      "Every train of the timetable run together with safe separation v <= sqrt(2 L b), as "
+      "`ecorail timetable evaluate --separation`: L the distance to the train ahead's tail "
+      "less safety_margin_m (train_length_m, m), b = braking_m_s2 (0: the train's maximum "
+      "braking force at 10 km/h over its mass); a follower held up where waiting would "
+      "make it late is driven by follower: 'reoptimise' (energy-optimal under the cap), "
+      "'supervise' (its planned control, braked) or 'wait'. to_dict() is the energy "
+      "document's \"separation\" block.");
+
+  const std::string evaluate_doc =
+      std::string(
+          "The substation energy of a fleet timetable, as `ecorail timetable evaluate`: "
+          "departures_s (whole s from the first departure) or headways_s, or uniform "
+          "headways when neither is given.") +
+      kFleetDoc;
+  def_with(
+      tt, "evaluate",
+      [](const PyLine& line, const PyTrain& train, const py::object& departures_s,
+         const py::object& headways_s, const std::string& model, const std::string& overlap,
+         double step_s, std::vector<double> sections_at_m, py::object power_supply,
+         double trip_time_s, double dwell_s, int trains, int span_s, Range headway_s,
+         Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
+         Range offpeak_headway_s, double ds_m, double dv_kmh, int threads) {
+        FleetArgs a;
+        add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
+                       trip_time_s, dwell_s, ds_m, dv_kmh, threads);
+        set_problem(a, trains, span_s, headway_s, dwell_range_s, std::move(peaks), peak_headway_s,
+                    offpeak_headway_s);
+        return evaluate_py(*fleet_state(line, train, a), a, departures_s, headways_s);
+      },
+      std::make_tuple(py::arg("line"), py::arg("train"), py::kw_only(),
+                      py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none()),
+      model_kwargs(), run_kwargs(), problem_kwargs(), grid_kwargs(),
+      std::make_tuple(evaluate_doc.c_str()));
+  const std::string optimise_doc =
+      std::string(
+          "The headways that minimise substation energy, as `ecorail timetable "
+          "optimise`: exact DPs for the overlap models, annealing (restarts, moves, "
+          "seed, anneal_step_s, time_limit_s in s; 0: none) + polish + a bound for "
+          "power-flow. CONVERGENCE only when the proven gap is at most gap (a fraction of "
+          "the substation energy); a search stopped by time_limit_s or its moves with a "
+          "larger gap is NO_CONVERGENCE with its gap (a result: is_solution_usable). "
+          "pattern: the dwells and running times too (`--optimise pattern`); "
+          "per_train_patterns: each train its own pattern (power-flow and sections "
+          "models).") +
+      kFleetDoc;
+  def_with(
+      tt, "optimise",
+      [](const PyLine& line, const PyTrain& train, const std::string& model,
+         const std::string& overlap, double step_s, std::vector<double> sections_at_m,
+         py::object power_supply, double trip_time_s, double dwell_s, int trains, int span_s,
+         Range headway_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
+         Range offpeak_headway_s, double ds_m, double dv_kmh, int threads, std::uint64_t seed,
+         double time_limit_s, int restarts, int rounds, long moves, double anneal_step_s,
+         double gap, bool pattern, bool per_train_patterns, const py::object& progress) {
+        FleetArgs a;
+        add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
+                       trip_time_s, dwell_s, ds_m, dv_kmh, threads);
+        set_problem(a, trains, span_s, headway_s, dwell_range_s, std::move(peaks), peak_headway_s,
+                    offpeak_headway_s);
+        return optimise_py(*fleet_state(line, train, a), a,
+                           search_options(seed, time_limit_s, restarts, rounds, moves,
+                                          anneal_step_s, gap, pattern, per_train_patterns),
+                           progress);
+      },
+      std::make_tuple(py::arg("line"), py::arg("train"), py::kw_only()), model_kwargs(),
+      run_kwargs(), problem_kwargs(), grid_kwargs(), search_kwargs(),
+      std::make_tuple(py::arg("progress") = py::none(), optimise_doc.c_str()));
 }
 
 }  // namespace ecorail::python

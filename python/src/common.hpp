@@ -86,10 +86,8 @@ py::array to_numpy(const std::vector<std::string>& v);  // numpy str array ('<U.
 
 // How a solve ended, as a Python object: termination (ecorail.Termination), brief_report,
 // full_report, warnings, is_solution_usable. Usable is what the library's summary says
-// (IsSolutionUsable), as Ceres: FAILURE never is; NO_CONVERGENCE is usable where the solver
-// stopped on a budget with a result that keeps every constraint (a fleet search, with its
-// proven gap), not where it means a run that misses its running time (the single-train solves,
-// dp::is_usable). A summary made without a library summary falls back to dp::is_usable.
+// (IsSolutionUsable, dp/termination.hpp's one rule: the result keeps every constraint). A
+// summary made without a library summary falls back to dp::is_usable of its termination.
 struct PySummary {
   dp::Termination termination = dp::Termination::FAILURE;
   std::string brief_report, full_report;

@@ -82,8 +82,8 @@ expect_error "--svg" delay --plan plan.csv --train 1 --station A7 --delay 10 --s
 # Train 1 departs A7 before it arrives there.
 awk -F, 'BEGIN{OFS=","} NR==3{$4=$5+1} {print}' plan.csv > broken.csv
 expect_error "broken.csv" delay --plan broken.csv --train 1 --station A7 --delay 10 --json x.json
-# A delay far longer than the headway (issue: a follower ended 993 m inside the late train and
-# later passed it): trains 120 s apart, train 1 leaves A7 5000 s late. Every follower waits at a
+# A delay far longer than the headway (the case where a follower could end inside the late
+# train and pass it): trains 120 s apart, train 1 leaves A7 5000 s late. Every follower waits at a
 # stop for the line ahead to clear, never comes closer than its braking distance, never arrives
 # anywhere before the train ahead, and the cascade is reported.
 "$ecorail" timetable evaluate --from A6 --to A9 --trip-time 380 --trains 3 --span 240 \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Outputs a user can trust (issues 8 and 15): every output target is checked before the solve
+# Outputs a user can trust: every output target is checked before the solve
 # (missing directory, a directory as target, a plot name that is neither .svg nor .png, no
 # gnuplot or no pngcairo terminal, the same file twice) with one line and exit 2 and nothing
 # written; a failed run leaves no earlier output behind; symbolic links (/dev/stdout), FIFOs and

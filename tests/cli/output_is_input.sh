@@ -27,7 +27,7 @@ printf 'headway_s\n200\n200\n200\n200\n200\n' > h.csv
 ln h.csv h-link.csv  # a hard link: the same file under another name
 small=(--from A6 --to A9 --trains 6 --span 1000 --headway 150:250 --trip-time 480)
 
-# The examples of the issue.
+# An output that names an input of the same run.
 refused "--headways" h.csv timetable evaluate "${small[@]}" --headways h.csv --csv h.csv
 refused "--headways" h.csv timetable evaluate "${small[@]}" --headways h.csv --csv ./h.csv
 refused "--headways" h.csv timetable evaluate "${small[@]}" --headways h.csv --csv sub/../h.csv

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Impossible inputs and resource limits, end to end: each once gave exit 0 with
-# nonsense, a crash, an abort inside a library or a run of minutes; each is now one line naming
+# Impossible inputs and resource limits, end to end: left unchecked, each would give exit 0
+# with nonsense, a crash, an abort inside a library or a run of minutes; each is one line naming
 # file/flag and field, exit 2, nothing written, and within seconds.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"

@@ -67,9 +67,9 @@ TEST(EfficiencyMapIo, WritesBackToTheSameTextAndChecksum) {
   EXPECT_NE(train_checksum(plain), train_checksum(t));
 }
 
-// A fuzz finding: a map speed of 84 km/h was read as 84 * (1/3.6) and written by inverting
-// 84 / 3.6, which differ in the last bit, so the text drifted on every round trip. The reader
-// now uses the conversions the writer inverts.
+// A fuzz finding: a map speed of 84 km/h read as 84 * (1/3.6) and written by inverting
+// 84 / 3.6 differs in the last bit, so the text would drift on every round trip. The reader
+// uses the conversions the writer inverts.
 TEST(EfficiencyMapIo, MapAxesReadBackExactly) {
   const physics::Train t = parse_train_toml(
       reference_with("",

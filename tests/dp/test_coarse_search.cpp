@@ -78,9 +78,9 @@ TEST(CoarseSearch, HalfSecondPriceToleranceCostsNoMoreThanTheGridsRaggedness) {
 
 // A5 -> A6 a little above its flat-out time is where the grid is most ragged: there the coarse
 // runs' own decisions (held cruises, coasting holds) make their running time jump by seconds,
-// and the most time-sensitive switch can buy a trimmed second far dearer than the price. Found
-// by re-measuring the documents: 152 s missed its time (153.27 s) and 157 s cost 68624.1 kJ
-// between 66018.6 kJ at 156 s and 64403.4 kJ at 158 s. Every time from 148 s to 158 s must now
+// and the most time-sensitive switch can buy a trimmed second far dearer than the price
+// (without the safeguards, 152 s misses its time, 153.27 s, and 157 s costs 68624.1 kJ
+// between 66018.6 kJ at 156 s and 64403.4 kJ at 158 s). Every time from 148 s to 158 s must
 // be met and cost less than the second before (the optimal energy falls with the running time).
 TEST(CoarseSearch, RaggedSectionMeetsEveryTimeAndEnergyFallsWithTime) {
   const physics::Train train = data::default_train();

@@ -76,6 +76,22 @@ TEST(ToyEnergyModel, IsMadeByNameAndListed) {
   EXPECT_THROW(make_energy_model(still_trip(), {3, 300, 120, 180}, o), std::invalid_argument);
 }
 
+// What each model reads comes from the registry's table (the CLI and the Python module refuse
+// an option by it): the toy model, registered without inputs, reads none of them.
+TEST(ToyEnergyModel, ReadsNoOptionAndTheTableSaysWhatEachModelReads) {
+  ASSERT_TRUE(registered);
+  const ModelInputs toy = model_inputs("toy");
+  EXPECT_FALSE(toy.overlap_variant || toy.section_boundaries || toy.power_supply ||
+               toy.per_train_trips);
+  EXPECT_EQ(toy.default_time_step_s, 0.01);
+  EXPECT_EQ(models_with(&ModelInputs::per_train_trips), "power-flow or sections");
+  EXPECT_EQ(models_with(&ModelInputs::overlap_variant), "overlap");
+  EXPECT_EQ(models_with(&ModelInputs::power_supply, "'"), "'network'");
+  EXPECT_EQ(models_with(&ModelInputs::section_boundaries), "sections");
+  EXPECT_EQ(model_inputs("network").default_time_step_s, kNetworkTimeStep_s);
+  EXPECT_THROW(model_inputs("no-such-model"), std::invalid_argument);
+}
+
 TEST(ToyEnergyModel, HeadwaySearchFindsTheBruteForceOptimum) {
   ASSERT_TRUE(registered);
   fleet::FleetProblem p;

@@ -1,4 +1,4 @@
-// Output integrity (issues 8 and 15): outputs are committed together or not at all, only
+// Output integrity: outputs are committed together or not at all, only
 // regular files are ever replaced (a symbolic link such as /dev/stdout, a FIFO, a device or a
 // directory is refused and left as it was), "-" is standard output, and no temporary file is
 // left behind.

@@ -2,8 +2,8 @@
 // resistance work (Davis, gradient, curve) + kinetic change, integrated over the trace
 // independently of the simulator's ledger, with non-negative dissipation. A reference run
 // closes it far inside the tolerance; a ledger off by 1 % does not; and a train with a negative
-// Davis coefficient, which loaders now refuse but a library caller can still build, once gave a
-// "CONVERGENCE" run regenerating 77 times its traction energy and is now never usable.
+// Davis coefficient, which loaders refuse but a library caller can still build, would
+// regenerate 77 times its traction energy: such a run is never usable.
 #include <gtest/gtest.h>
 
 #include <cmath>
