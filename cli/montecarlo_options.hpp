@@ -22,6 +22,7 @@ struct MonteCarloArgs {
   long long days = 1000;
   long long seed = 1;
   std::string recovery = "exact";
+  std::string followers = "driven";
   std::string tail = "exponential:30";
   double run_early_s = 0.0;
   std::string run_early_values = "0";
