@@ -112,6 +112,9 @@ def test_montecarlo_matches_cli(reference, run_cli, cache_dir):
     assert one.substation_energy_kJ["mean"] == pytest.approx(np.mean(one.day_substation_kJ),
                                                              rel=1e-12)
     assert 0.0 <= one.punctuality["mean"] <= 1.0
+    assert cli["config"]["followers"] == "driven"  # the default, as the program's
+    with pytest.raises(ValueError, match="^followers"):
+        ecorail.montecarlo(line, train, days=2, followers="fast", cache_dir=cache_dir)
 
 
 def test_peak_windows_match_cli(reference, run_cli):
