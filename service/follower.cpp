@@ -128,17 +128,28 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     }
     // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
     // sums, on ready the rounding of the waits.
-    std::sort(next.begin(), next.end(), [](const State& x, const State& y) {
+    // Sorted by key (small records; ties in every key by the order made, so the states kept do
+    // not depend on the sort's implementation).
+    struct Key {
+      double ready_s, lateness, energy_J;
+      std::size_t index;
+    };
+    std::vector<Key> keys(next.size());
+    for (std::size_t i = 0; i < next.size(); ++i)
+      keys[i] = {next[i].ready_s, next[i].lateness, next[i].energy_J, i};
+    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
       if (x.ready_s != y.ready_s) return x.ready_s < y.ready_s;
       if (x.lateness != y.lateness) return x.lateness < y.lateness;
-      return x.energy_J < y.energy_J;
+      if (x.energy_J != y.energy_J) return x.energy_J < y.energy_J;
+      return x.index < y.index;
     });
     // Every state kept before s is ready no later, so s is dominated when a kept state has no
     // more lateness (within 1e-9) and no more energy (within 1e-6): the least energy of the
     // kept states up to a lateness is a staircase (lateness up, energy down), one look-up.
     std::vector<State> kept;
     std::map<double, double> least_energy;  // lateness -> least energy of kept states up to it
-    for (const State& s : next) {
+    for (const Key& key : keys) {
+      const State& s = next[key.index];
       auto it = least_energy.upper_bound(s.lateness + 1e-9);
       if (it != least_energy.begin() && std::prev(it)->second <= s.energy_J + 1e-6) continue;
       kept.push_back(s);
