@@ -9,7 +9,6 @@
 
 #include <cmath>
 
-#include "output/section_run_cache.hpp"
 #include "recovery/delay_recovery.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery/monte_carlo_run.hpp"
@@ -19,14 +18,8 @@ namespace ecorail::recovery {
 namespace {
 
 using testing::small_library;
+using testing::small_runs;
 using testing::test_store;
-
-SectionRuns& follower_runs() {
-  static output::FileSectionRunStore store(std::string(ECORAIL_BINARY_DIR) +
-                                           "/test-cache/recovery-section-runs");
-  static SectionRuns runs(small_library(), test_store(), 2.0, 0.1, &store);
-  return runs;
-}
 
 // As `delay`: no early running, no take-over (a 90 s delay is recovered, not handed over).
 MonteCarloOptions driven_options() {
@@ -53,7 +46,7 @@ const Plan& three_trains() {
 }
 
 const MonteCarlo& driven() {
-  static const MonteCarlo mc(small_library(), three_trains(), driven_options(), follower_runs());
+  static const MonteCarlo mc(small_library(), three_trains(), driven_options(), small_runs());
   return mc;
 }
 
@@ -100,7 +93,7 @@ TEST(MonteCarloFollowers, RandomDaysAreTheSameForAnyThreadCountAndKeepTheBraking
   ASSERT_TRUE(parse_delay_tail("uniform:30:110", o.delays, nullptr));  // long delays, held up
   o.delays.p_none = 0.4;
   o.delays.p_small = 0.2;
-  const MonteCarlo mc(small_library(), three_trains(), o, follower_runs());
+  const MonteCarlo mc(small_library(), three_trains(), o, small_runs());
   const std::vector<DayRecord> one = mc.run_days(0, 12, 1), two = mc.run_days(0, 12, 2);
   ASSERT_EQ(one.size(), two.size());
   std::int64_t held = 0;
@@ -117,14 +110,14 @@ TEST(MonteCarloFollowers, RandomDaysAreTheSameForAnyThreadCountAndKeepTheBraking
 TEST(MonteCarloFollowers, TheFastModeIsLabelled) {
   MonteCarloOptions o = driven_options();
   o.followers = FollowerModel::Shortcut;
-  const MonteCarlo fast(small_library(), three_trains(), o, follower_runs());
+  const MonteCarlo fast(small_library(), three_trains(), o, small_runs());
   MonteCarloRunInfo info;
   info.days_total = 2;
-  const MonteCarloDays f = simulate_days(fast, follower_runs(), 0, 2, 1, info);
+  const MonteCarloDays f = simulate_days(fast, small_runs(), 0, 2, 1, info);
   EXPECT_NE(f.summary.BriefReport().find("fast mode"), std::string::npos);
   EXPECT_EQ(f.run.config.at("followers"), "shortcut");
   EXPECT_EQ(run_summary(f.run).followers, "shortcut");
-  const MonteCarloDays d = simulate_days(driven(), follower_runs(), 0, 2, 1, info);
+  const MonteCarloDays d = simulate_days(driven(), small_runs(), 0, 2, 1, info);
   EXPECT_EQ(d.summary.BriefReport().find("fast mode"), std::string::npos);
   EXPECT_NE(d.summary.BriefReport().find("followers driven"), std::string::npos);
   EXPECT_EQ(d.run.config.at("followers"), "driven");
