@@ -66,6 +66,9 @@ recovery::MonteCarloOptions simulation_options(const MonteCarloArgs& a) {
   const auto policy = recovery::recovery_policy_from_name(a.recovery);
   if (!policy) bad("--recovery", "exact, exact-punctual or rule; got '" + a.recovery + "'");
   o.recovery = *policy;
+  const auto followers = recovery::follower_model_from_name(a.followers);
+  if (!followers) bad("--followers", "driven or shortcut; got '" + a.followers + "'");
+  o.followers = *followers;
   std::string why;
   if (!recovery::parse_delay_tail(a.tail, o.delays, &why)) bad("--tail", why);
   o.seed = static_cast<std::uint64_t>(a.seed);
@@ -111,6 +114,11 @@ void add_montecarlo_options(CLI::App* cmd, MonteCarloArgs& a) {
                   "exact (question 3.1's policy, early running allowed), exact-punctual (the same, "
                   "every arrival on the way punctual where flat out can make it) or rule (flat "
                   "out until on time)")
+      ->capture_default_str();
+  cmd->add_option("--followers", a.followers,
+                  "driven (a train held up by the one ahead waits and is driven back on time "
+                  "under the cap, as `delay` drives it) or shortcut (the fast mode: departures "
+                  "at least --separation apart, nothing re-simulated)")
       ->capture_default_str();
   cmd->add_option("--tail", a.tail,
                   "delays over 10 s: exponential:MEAN (10 s + exponential) or uniform:LOW:HIGH")

@@ -22,6 +22,7 @@ struct MonteCarloArgs {
   long long days = 1000;
   long long seed = 1;
   std::string recovery = "exact";
+  std::string followers = "driven";
   std::string tail = "exponential:30";
   // --early, --run-early, --min-dwell, --takeover, --punctual, --separation, --knot-step and
   // --step set these fields of the simulator's options (and take their defaults from them);

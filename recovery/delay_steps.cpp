@@ -85,6 +85,22 @@ void RunCache::prefetch(const std::vector<std::vector<double>>& times_s) {
         runs_.emplace(std::make_pair(k, std::llround(t * 1e6)), std::move(run));
 }
 
+std::vector<std::vector<double>> follower_run_times(const TrainTimes& times, double step_s,
+                                                    double slower_s, std::size_t first) {
+  const std::size_t n = times.min_s.size();
+  std::vector<std::vector<double>> grid(n);
+  for (std::size_t k = first; k < n; ++k) {
+    const double top = times.planned_s[k] + slower_s;
+    for (int j = 0;; ++j) {
+      const double t = times.min_s[k] + j * step_s;
+      if (t >= top - 1e-6) break;
+      grid[k].push_back(std::round(t * 1000.0) / 1000.0);
+    }
+    grid[k].push_back(std::round(top * 1000.0) / 1000.0);
+  }
+  return grid;
+}
+
 AffectedTrain lateness_of(int train, const physics::Trip& trip, const TrainStops& plan,
                           const std::vector<std::string>& stations, double tol) {
   AffectedTrain a;

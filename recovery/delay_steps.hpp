@@ -33,9 +33,11 @@ class RunCache {
   const Run& get(std::size_t section, double time_s);
   // Solves the runs of times_s[section] not yet held, sections side by side (OpenMP).
   void prefetch(const std::vector<std::vector<double>>& times_s);
+  // The run held within a millisecond of the time, or nullptr (never solves: safe to call from
+  // many threads once the cache is filled).
+  const Run* find(std::size_t section, double time_s) const;
 
  private:
-  const Run* find(std::size_t section, double time_s) const;
   std::unique_ptr<Run> make(std::size_t section, double time_s) const;
   const dp::SectionLibrary& library_;
   double threshold_s_;
@@ -49,6 +51,12 @@ struct TrainTimes {
 };
 TrainTimes train_times(const dp::SectionLibrary& library, const Plan& plan, std::size_t train,
                        const DelayRecoveryOptions& options);
+
+// The running times a held-up follower chooses from on each section from `first` on: flat out
+// (times.min_s), then every step_s, up to slower_s above its planned time (that time included),
+// to the millisecond; empty lists before `first`. What `delay` and the Monte Carlo both drive.
+std::vector<std::vector<double>> follower_run_times(const TrainTimes& times, double step_s,
+                                                    double slower_s, std::size_t first);
 
 // 1. The first station a flat-out run with least dwells (never leaving early) reaches no later
 // than planned; plan.sections() + 1 when none does.

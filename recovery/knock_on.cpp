@@ -107,16 +107,8 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     recover.min_dwell_s = times.min_dwell_s;
     recover.lateness_first = options.lateness_first;
     recover.runs = [&](std::size_t first) {
-      std::vector<std::vector<double>> grid(n);
-      for (std::size_t k = first; k < n; ++k) {
-        const double top = times.planned_s[k] + options.follower_slower_s;
-        for (int j = 0;; ++j) {
-          const double t = times.min_s[k] + j * options.follower_time_step_s;
-          if (t >= top - 1e-6) break;
-          grid[k].push_back(std::round(t * 1000.0) / 1000.0);
-        }
-        grid[k].push_back(std::round(top * 1000.0) / 1000.0);
-      }
+      const std::vector<std::vector<double>> grid =
+          follower_run_times(times, options.follower_time_step_s, options.follower_slower_s, first);
       cache.prefetch(grid);
       std::vector<std::vector<const physics::SimulationResult*>> runs;
       for (std::size_t k = first; k < n; ++k) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "fleet/fleet_pattern.hpp"
+#include "recovery/monte_carlo_followers.hpp"
 #include "service/separation.hpp"
 
 namespace ecorail::recovery {
@@ -33,6 +34,10 @@ const char* recovery_policy_name(RecoveryPolicy p) {
       return "rule";
   }
   return "exact";
+}
+
+const char* follower_model_name(FollowerModel m) {
+  return m == FollowerModel::Shortcut ? "shortcut" : "driven";
 }
 
 bool MonteCarloOptions::IsValid(std::string* error) const {
@@ -63,20 +68,28 @@ bool MonteCarloOptions::IsValid(std::string* error) const {
 
 std::string MonteCarloSummary::BriefReport() const {
   const MonteCarloStatistics& s = statistics;
+  char followers_text[200];
+  if (followers == "shortcut")
+    std::snprintf(followers_text, sizeof followers_text,
+                  "followers in the fast mode (departures at least %.1f s apart, not driven)",
+                  separation_s);
+  else
+    std::snprintf(followers_text, sizeof followers_text,
+                  "followers driven under the cap (%.2f held up a day)", s.followers_held_up.mean);
   char buf[1100];
-  std::snprintf(
-      buf, sizeof buf,
-      "ecorail montecarlo days %llu-%llu: punctuality %.4f +- %.4f, mean lateness %.3f "
-      "+- %.3f s, p95 lateness %.2f +- %.2f s, recovery %.1f +- %.1f s, traction %.1f "
-      "+- %.1f kJ, substation %.1f +- %.1f kJ (plan %.1f kJ), taken over %.3f a day; "
-      "followers in the fast mode (departures at least %.1f s apart, not driven); "
-      "%.2f s wall, %s",
-      static_cast<unsigned long long>(first_day),
-      static_cast<unsigned long long>(last_day > 0 ? last_day - 1 : 0), s.punctuality.mean,
-      s.punctuality.ci95, s.mean_lateness_s.mean, s.mean_lateness_s.ci95, s.p95_lateness_s.mean,
-      s.p95_lateness_s.ci95, s.recovery_time_s.mean, s.recovery_time_s.ci95, s.traction_kJ.mean,
-      s.traction_kJ.ci95, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
-      s.takeovers.mean, separation_s, wall_s, std::string(dp::status_word(termination, 0)).c_str());
+  std::snprintf(buf, sizeof buf,
+                "ecorail montecarlo days %llu-%llu: punctuality %.4f +- %.4f, mean lateness %.3f "
+                "+- %.3f s, p95 lateness %.2f +- %.2f s, recovery %.1f +- %.1f s, traction %.1f "
+                "+- %.1f kJ, substation %.1f +- %.1f kJ (plan %.1f kJ), taken over %.3f a day; "
+                "%s; %.2f s wall, %s",
+                static_cast<unsigned long long>(first_day),
+                static_cast<unsigned long long>(last_day > 0 ? last_day - 1 : 0),
+                s.punctuality.mean, s.punctuality.ci95, s.mean_lateness_s.mean,
+                s.mean_lateness_s.ci95, s.p95_lateness_s.mean, s.p95_lateness_s.ci95,
+                s.recovery_time_s.mean, s.recovery_time_s.ci95, s.traction_kJ.mean,
+                s.traction_kJ.ci95, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
+                s.takeovers.mean, followers_text, wall_s,
+                std::string(dp::status_word(termination, 0)).c_str());
   return std::string(buf) + "\n";
 }
 
@@ -92,6 +105,7 @@ std::string MonteCarloSummary::FullReport() const {
       "  recovery time        %.2f +- %.2f s (%lld recoveries)\n"
       "  traction             %.1f +- %.1f kJ (plan %.1f kJ)\n"
       "  substation           %.1f +- %.1f kJ (plan %.1f kJ)\n"
+      "  followers            %s, %.2f held up a day, least gap %.2f m\n"
       "  primary delays       %.2f a day (%.2f over 10 s), knock-on %.2f a day\n"
       "  taken over           %.3f a day (%.3f arrivals), not back by the last station %.3f\n"
       "  termination          %s\n",
@@ -100,9 +114,9 @@ std::string MonteCarloSummary::FullReport() const {
       s.p95_lateness_s.mean, s.p95_lateness_s.ci95, s.recovery_time_s.mean, s.recovery_time_s.ci95,
       static_cast<long long>(s.recoveries), s.traction_kJ.mean, s.traction_kJ.ci95,
       plan_traction_kJ, s.substation_kJ.mean, s.substation_kJ.ci95, plan_substation_kJ,
-      s.primary_delays.mean, s.tail_delays.mean, s.knock_on_delays.mean, s.takeovers.mean,
-      s.arrivals_taken_over.mean, s.unrecovered_episodes.mean,
-      std::string(dp::termination_name(termination)).c_str());
+      followers.c_str(), s.followers_held_up.mean, s.min_follower_gap_m, s.primary_delays.mean,
+      s.tail_delays.mean, s.knock_on_delays.mean, s.takeovers.mean, s.arrivals_taken_over.mean,
+      s.unrecovered_episodes.mean, std::string(dp::termination_name(termination)).c_str());
   return out + buf;
 }
 
@@ -164,13 +178,25 @@ MonteCarlo::MonteCarlo(const dp::SectionLibrary& library, const Plan& plan,
                                [](double a, double b) { return std::fabs(a - b) < 5e-4; }),
                    exact[j].end());
   }
+  const bool driven = options.followers == FollowerModel::Driven;
+  if (driven) {
+    const auto cands =
+        detail::DrivenFollowers::candidate_times(library, plan_, options.min_dwell_s, runs);
+    for (std::size_t j = 0; j < n; ++j)
+      exact[j].insert(exact[j].end(), cands[j].begin(), cands[j].end());
+  }
   runs.ensure_all(upper, exact);
+  if (driven)
+    followers_ =
+        std::make_unique<detail::DrivenFollowers>(library, plan_, runs, options.min_dwell_s);
   separation_s_ =
       options.separation_s >= 0.0 ? options.separation_s : separation_time_s(library, plan, runs);
   horizon_s_ = 0.0;
   for (const TrainStops& t : plan.trains) horizon_s_ = std::max(horizon_s_, t.arrival_s.back());
   horizon_s_ += 3600.0 + kClockOffset_s;
 }
+
+MonteCarlo::~MonteCarlo() = default;
 
 void MonteCarlo::allocate(std::size_t k, std::size_t a, std::size_t b, double start_s, double end_s,
                           std::vector<double>& t) const {
@@ -245,14 +271,15 @@ double MonteCarlo::exact_target(std::size_t k, std::size_t j, double departure_s
   return t[j];
 }
 
-DayRecord MonteCarlo::simulate_day(std::uint64_t day,
-                                   const std::vector<ForcedDelay>* forced) const {
+DayRecord MonteCarlo::simulate_day(std::uint64_t day, const std::vector<ForcedDelay>* forced,
+                                   std::vector<std::vector<double>>* arrivals_s) const {
   thread_local DayBins bins;
   bins.step_s = runs_.bin_step_s();
   bins.reset(static_cast<std::size_t>(std::ceil(horizon_s_ / bins.step_s)));
   const std::size_t n = plan_.sections(), trains = plan_.trains.size();
   const bool exact = options_.recovery != RecoveryPolicy::Rule;
   const double tol = options_.on_time_tolerance_s;
+  const detail::DrivenFollowers* drive = followers_.get();
   DayRecord r;
   r.day = day;
   r.station_arrivals.assign(n + 1, 0);
@@ -260,21 +287,32 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
   r.lateness_histogram.assign(kLatenessHistogramBins, 0);
   std::vector<double> lateness;
   lateness.reserve(trains * n);
-  // The last train that left each station: its actual and its planned departure.
+  if (arrivals_s != nullptr)
+    arrivals_s->assign(trains,
+                       std::vector<double>(n + 1, std::numeric_limits<double>::quiet_NaN()));
+  // The last train that left each station: its actual and its planned departure (shortcut).
   std::vector<double> last_dep(n, -1e300), last_planned(n, -1e300);
+  // Driven: every train's actual run; the train ahead is the last one that ran a section.
+  std::vector<detail::TrainTrack> tracks(drive != nullptr ? trains : 0);
+  const detail::TrainTrack* ahead = nullptr;
   for (std::size_t k = 0; k < trains; ++k) {
     const TrainStops& st = plan_.trains[k];
     double arrival = st.departure_s[0];
     bool in_recovery = false, episode = false;
     double episode_start = 0.0;
     bool served = true;
+    // A held-up train's runs from the stop where it was held up (driven followers), followed
+    // while no new delay strikes it.
+    std::vector<detail::DrivenStep> path;
+    std::size_t path_from = 0;
+    bool on_path = false;
     for (std::size_t j = 0; j < n; ++j) {
       const double d = st.departure_s[j];
       const double ready = j == 0 ? d : arrival + dmin_[k][j];
       double dep = std::max(ready, exact && in_recovery ? d - slack_s_ : d);
-      // Knock-on: no sooner than the separation after the train ahead (or the plan's own
-      // headway where that is shorter: the plan was made under the cap).
-      if (last_dep[j] > -1e299) {
+      // Knock-on, shortcut: no sooner than the separation after the train ahead (or the plan's
+      // own headway where that is shorter: the plan was made under the cap).
+      if (drive == nullptr && last_dep[j] > -1e299) {
         const double gap = std::min(separation_s_, d - last_planned[j]);
         if (last_dep[j] + gap > dep + 1e-9) {
           dep = last_dep[j] + gap;
@@ -303,29 +341,64 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
         break;
       }
       dep += delay.delay_s;
+      if (delay.delay_s > 0.0) on_path = false;  // a new delay: the policy decides again
+      const double planned = plan_.running_time_s(k, j);
+      double t = planned;
+      double run_time = 0.0;  // the run's own time (driven followers), 0: t
+      const detail::DrivenRun* leads = nullptr;
+      if (on_path) {
+        const detail::DrivenStep& step = path[j - path_from];
+        dep = step.departure_s;
+        if (step.line_wait_s > 0.0) ++r.knock_on_delays;
+        t = step.run->time_s;
+        run_time = step.run->sim->running_time_s;
+        leads = step.run;
+      } else {
+        const double late = dep - d;
+        if (late > 1e-9 || in_recovery) {
+          if (exact) {
+            bool recoverable = false;
+            std::size_t target = n + 1;
+            t = exact_target(k, j, dep, &recoverable, &target);
+            in_recovery = !recoverable || target > j + 1;
+          } else {
+            const double m = runs_.min_time_s(j);
+            t = late <= planned - m ? planned - std::max(0.0, late) : m;
+          }
+        }
+        t = std::clamp(t, runs_.min_time_s(j), std::max(runs_.min_time_s(j), runs_.last_knot_s(j)));
+        if (drive != nullptr) {
+          leads = &drive->at_or_above(j, t);
+          if (ahead != nullptr && !drive->clear(*ahead, j, drive->at_or_below(j, t), dep)) {
+            // Held up: it waits at the stop for the line ahead and is driven back on time.
+            path = drive->path(k, *ahead, j, dep);
+            path_from = j;
+            on_path = true;
+            in_recovery = true;
+            tracks[k].held_up = true;
+            const detail::DrivenStep& step = path.front();
+            dep = step.departure_s;
+            if (step.line_wait_s > 0.0) ++r.knock_on_delays;
+            t = step.run->time_s;
+            run_time = step.run->sim->running_time_s;
+            leads = step.run;
+          }
+        }
+      }
       last_dep[j] = dep;
       last_planned[j] = d;
+      if (drive != nullptr) {
+        tracks[k].departure_s.push_back(dep);
+        tracks[k].runs.push_back(leads);
+      }
       const double late = dep - d;
       if (!episode && late > tol) {
         episode = true;
         episode_start = dep;
       }
-      const double planned = plan_.running_time_s(k, j);
-      double t = planned;
-      if (late > 1e-9 || in_recovery) {
-        if (exact) {
-          bool recoverable = false;
-          std::size_t target = n + 1;
-          t = exact_target(k, j, dep, &recoverable, &target);
-          in_recovery = !recoverable || target > j + 1;
-        } else {
-          const double m = runs_.min_time_s(j);
-          t = late <= planned - m ? planned - std::max(0.0, late) : m;
-        }
-      }
-      t = std::clamp(t, runs_.min_time_s(j), std::max(runs_.min_time_s(j), runs_.last_knot_s(j)));
       runs_.lay(j, t, dep + kClockOffset_s, bins);
-      arrival = dep + t;
+      arrival = dep + (run_time > 0.0 ? run_time : t);
+      if (arrivals_s != nullptr) (*arrivals_s)[k][j + 1] = arrival;
       const double arr_late = arrival - st.arrival_s[j + 1];  // against the operating plan
       const double late_published = arr_late - options_.run_early_s;
       const double lat = std::max(0.0, late_published);
@@ -347,6 +420,20 @@ DayRecord MonteCarlo::simulate_day(std::uint64_t day,
       }
     }
     if (served && episode) ++r.unrecovered_episodes;
+    if (drive != nullptr) {
+      detail::TrainTrack& me = tracks[k];
+      if (me.held_up) {
+        // The invariant, on the whole re-simulated run behind the train ahead.
+        const service::SeparationScan scan = drive->check(*ahead, me, k);
+        ++r.followers_held_up;
+        r.min_follower_gap_m = std::min(r.min_follower_gap_m, scan.min_gap_m);
+        r.min_follower_margin_m = std::min(r.min_follower_margin_m, scan.min_distance_margin_m);
+      }
+      if (!me.runs.empty()) {
+        if (ahead != nullptr) ahead->trip = physics::Trip();  // no longer needed
+        ahead = &me;
+      }
+    }
   }
   if (!lateness.empty()) {
     const std::size_t rank = (95 * lateness.size() + 99) / 100;  // nearest rank, 1-based

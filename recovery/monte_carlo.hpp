@@ -7,20 +7,22 @@
 // frontiers), with early running allowed (a train may depart up to early_s before its
 // timetabled departure inside a recovery, so it may also run a section slower than planned to
 // arrive on time), or the seed paper's rule (flat out until on time, never early). A train
-// departs no sooner than separation_s after the train ahead left the same station (knock-on
-// delay: the fast mode of the followers, reported as such; the followers are not driven under
-// the braking-distance cap here, as recover_delay drives them, docs/delays.md gives the error); a
-// drawn delay over takeover_s takes the train out of service at that station: the next service
-// takes over its passengers, its remaining sections are not run (no energy) and its remaining
-// arrivals are counted as taken over, not as late. Energy: traction at the wheel and substation
-// energy after regenerated energy is used, in the power-flow model of one supply section (min of
-// traction and regenerated energy per bin), from precomputed section runs laid on the day's grid
+// is checked against the actual run of the train ahead and, when held up, driven by the follower
+// model of `ecorail delay` (FollowerModel::Driven, the default), or, in the fast mode
+// (FollowerModel::Shortcut, reported as such), departs no sooner than separation_s after the
+// train ahead left the same station (docs/delays.md gives the fast mode's error); a drawn delay
+// over takeover_s takes the train out of service at that station: the next service takes over its
+// passengers, its remaining sections are not run (no energy) and its remaining arrivals are counted
+// as taken over, not as late. Energy: traction at the wheel and substation energy after regenerated
+// energy is used, in the power-flow model of one supply section (min of traction and regenerated
+// energy per bin), from precomputed section runs laid on the day's grid
 // (recovery/section_runs.hpp). Days run in parallel (OpenMP) into an array indexed by day, so
 // results do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,11 +35,24 @@
 
 namespace ecorail::recovery {
 
+namespace detail {
+class DrivenFollowers;
+}
+
 // Exact: question 3.1's policy (earliest station back on time, then least energy). Rule: the
 // seed paper's. ExactPunctual: Exact with one more constraint before the energy: every arrival
 // on the way that a flat-out run could make punctual is punctual.
 enum class RecoveryPolicy { Exact, Rule, ExactPunctual };
 const char* recovery_policy_name(RecoveryPolicy p);
+
+// How a train held up by the one ahead runs. Driven: by the follower model of `ecorail delay`
+// (service/follower.hpp, recovery/monte_carlo_followers.hpp): every train is checked against the
+// actual run of the train ahead under the cap v <= sqrt(2 L b), and one that would come closer
+// than its braking distance waits at the stop and is driven back on time over the section runs
+// of `delay`, its runs priced as every other. Shortcut (the fast mode): consecutive departures
+// from a station at least separation_s apart, nothing re-simulated.
+enum class FollowerModel { Driven, Shortcut };
+const char* follower_model_name(FollowerModel m);
 
 struct MonteCarloOptions {
   DelayDistribution delays;
@@ -55,6 +70,7 @@ struct MonteCarloOptions {
   double separation_s = -1.0;  // least time between departures from a station (< 0: from the plan)
   double knot_step_s = 1.0;    // section runs every this many seconds of running time
   double bin_step_s = 0.1;     // power-flow grid; must divide 1 s
+  FollowerModel followers = FollowerModel::Driven;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
@@ -69,6 +85,7 @@ struct MonteCarloSummary {
   dp::Termination termination = dp::Termination::FAILURE;
   std::uint64_t first_day = 0, last_day = 0;  // days [first, last)
   int threads = 1;
+  std::string followers = "driven";  // follower_model_name of the run
   double separation_s = 0.0;
   std::size_t section_runs = 0;  // pieces precomputed
   MonteCarloStatistics statistics;
@@ -86,6 +103,7 @@ class MonteCarlo {
   // of one line, e.g. the candidates of plan adjustment).
   MonteCarlo(const dp::SectionLibrary& library, const Plan& plan, const MonteCarloOptions& options,
              SectionRuns& runs);
+  ~MonteCarlo();
 
   // The operating plan (the timetable shifted by run_early_s).
   const Plan& plan() const { return plan_; }
@@ -93,7 +111,10 @@ class MonteCarlo {
   double separation_s() const { return separation_s_; }
 
   // One day (0-based). forced: delays imposed instead of the random draws (all others 0).
-  DayRecord simulate_day(std::uint64_t day, const std::vector<ForcedDelay>* forced = nullptr) const;
+  // arrivals_s (may be null): every train's actual arrival at each stop on the day's clock (NaN
+  // at the first stop and where it did not run).
+  DayRecord simulate_day(std::uint64_t day, const std::vector<ForcedDelay>* forced = nullptr,
+                         std::vector<std::vector<double>>* arrivals_s = nullptr) const;
   // The plan run without any delay: its traction and substation energy.
   DayRecord plan_day() const;
   // Days [first, last) on `threads` OpenMP threads (0: all); records in day order. progress
@@ -120,6 +141,7 @@ class MonteCarlo {
   double separation_s_ = 0.0;
   double horizon_s_ = 0.0;
   double slack_s_ = 0.0;  // how much earlier than the operating plan a train may leave
+  std::unique_ptr<detail::DrivenFollowers> followers_;  // FollowerModel::Driven only
 };
 
 // The least time between two departures from a station for which a train running the plan's

@@ -32,6 +32,12 @@ std::optional<RecoveryPolicy> recovery_policy_from_name(const std::string& name)
   return std::nullopt;
 }
 
+std::optional<FollowerModel> follower_model_from_name(const std::string& name) {
+  for (FollowerModel m : {FollowerModel::Driven, FollowerModel::Shortcut})
+    if (name == follower_model_name(m)) return m;
+  return std::nullopt;
+}
+
 nlohmann::json monte_carlo_config(const MonteCarlo& mc, const MonteCarloRunInfo& info) {
   const MonteCarloOptions& o = mc.options();
   return {{"plan", info.plan_name},
@@ -39,6 +45,7 @@ nlohmann::json monte_carlo_config(const MonteCarlo& mc, const MonteCarloRunInfo&
           {"days", info.days_total},
           {"seed", o.seed},
           {"recovery", recovery_policy_name(o.recovery)},
+          {"followers", follower_model_name(o.followers)},
           {"p_none", o.delays.p_none},
           {"p_small", o.delays.p_small},
           {"small_max_s", o.delays.small_max_s},
@@ -79,6 +86,7 @@ MonteCarloDays simulate_days(const MonteCarlo& mc, const SectionRuns& runs, std:
   sm.first_day = first;
   sm.last_day = last;
   sm.threads = threads;
+  sm.followers = follower_model_name(mc.options().followers);
   sm.separation_s = mc.separation_s();
   sm.section_runs = runs.piece_count();
   sm.statistics = summarise(run.days, run.histogram);
@@ -97,22 +105,12 @@ MonteCarloSummary run_summary(const MonteCarloRun& run) {
   sm.plan_substation_kJ = run.plan_energy.value("substation_kJ", 0.0);
   sm.plan_traction_kJ = run.plan_energy.value("traction_kJ", 0.0);
   sm.termination = termination_of(sm.statistics, run.days.size());
-  return sm;
-}
-
-std::vector<StationPunctuality> station_punctuality(const MonteCarloStatistics& s,
-                                                    const std::vector<std::string>& stations) {
-  std::vector<StationPunctuality> out;
-  for (std::size_t i = 1; i < s.station_arrivals.size() && i < stations.size(); ++i) {
-    StationPunctuality p;
-    p.station = stations[i];
-    p.arrivals = s.station_arrivals[i];
-    p.punctual = s.station_punctual[i];
-    p.punctuality =
-        p.arrivals > 0 ? static_cast<double>(p.punctual) / static_cast<double>(p.arrivals) : 1.0;
-    out.push_back(std::move(p));
+  // A run written before the followers were driven was the shortcut.
+  if (run.config.is_object()) {
+    sm.followers = run.config.value("followers", std::string("shortcut"));
+    sm.separation_s = run.config.value("separation_s", 0.0);
   }
-  return out;
+  return sm;
 }
 
 nlohmann::json plan_adjustment_json(const PlanAdjustmentResult& r, const std::string& plan_name,

@@ -3,7 +3,7 @@
 // shapes the days, so shards of one run are recognised as such), and its summary with the
 // termination the run reached. `ecorail montecarlo` and ecorail.montecarlo both run through
 // here, so their JSON is one document. Also what the run's outputs read off the statistics:
-// punctuality per station, and the JSON of a plan adjustment.
+// and the JSON of a plan adjustment (punctuality per station: recovery/monte_carlo_stats.hpp).
 #pragma once
 
 #include <chrono>
@@ -23,6 +23,8 @@ namespace ecorail::recovery {
 
 // The policy of a name recovery_policy_name gives ("exact", "exact-punctual", "rule"), or none.
 std::optional<RecoveryPolicy> recovery_policy_from_name(const std::string& name);
+// The follower model of a name follower_model_name gives ("driven", "shortcut"), or none.
+std::optional<FollowerModel> follower_model_from_name(const std::string& name);
 
 // What shapes the days beside the simulator's options, for the run's config.
 struct MonteCarloRunInfo {
@@ -53,16 +55,6 @@ MonteCarloDays simulate_days(
 // The summary of a whole run read back or merged from shards (days 0 .. days - 1), with the
 // same termination rule.
 MonteCarloSummary run_summary(const MonteCarloRun& run);
-
-// Punctuality at each station after the first: its arrivals, the punctual ones and their share
-// (1 at a station without arrivals).
-struct StationPunctuality {
-  std::string station;
-  std::int64_t arrivals = 0, punctual = 0;
-  double punctuality = 1.0;
-};
-std::vector<StationPunctuality> station_punctuality(const MonteCarloStatistics& statistics,
-                                                    const std::vector<std::string>& stations);
 
 // The JSON of `montecarlo --adjust` (docs/outputs.md): every candidate's pattern, plan energy
 // and statistics, the chosen one and the brief report.

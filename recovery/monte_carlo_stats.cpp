@@ -72,10 +72,12 @@ MonteCarloStatistics summarise(const std::vector<DayRecord>& records,
   s.takeovers = field([](const DayRecord& r) { return r.takeovers; });
   s.arrivals_taken_over = field([](const DayRecord& r) { return r.arrivals_taken_over; });
   s.unrecovered_episodes = field([](const DayRecord& r) { return r.unrecovered_episodes; });
+  s.followers_held_up = field([](const DayRecord& r) { return r.followers_held_up; });
   for (const DayRecord& r : records) {
     s.arrivals += r.arrivals;
     s.punctual += r.punctual;
     s.recoveries += r.recoveries;
+    s.min_follower_gap_m = std::min(s.min_follower_gap_m, r.min_follower_gap_m);
     if (s.station_arrivals.size() < r.station_arrivals.size()) {
       s.station_arrivals.resize(r.station_arrivals.size(), 0);
       s.station_punctual.resize(r.station_arrivals.size(), 0);
@@ -105,6 +107,21 @@ MonteCarloStatistics summarise(const std::vector<DayRecord>& records,
   return s;
 }
 
+std::vector<StationPunctuality> station_punctuality(const MonteCarloStatistics& s,
+                                                    const std::vector<std::string>& stations) {
+  std::vector<StationPunctuality> out;
+  for (std::size_t i = 1; i < s.station_arrivals.size() && i < stations.size(); ++i) {
+    StationPunctuality p;
+    p.station = stations[i];
+    p.arrivals = s.station_arrivals[i];
+    p.punctual = s.station_punctual[i];
+    p.punctuality =
+        p.arrivals > 0 ? static_cast<double>(p.punctual) / static_cast<double>(p.arrivals) : 1.0;
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 namespace {
 
 nlohmann::json estimate_json(const Estimate& e) {
@@ -112,26 +129,32 @@ nlohmann::json estimate_json(const Estimate& e) {
 }
 
 nlohmann::json day_json(const DayRecord& r) {
-  return {{"day", r.day},
-          {"arrivals", r.arrivals},
-          {"punctual", r.punctual},
-          {"station_arrivals", r.station_arrivals},
-          {"station_punctual", r.station_punctual},
-          {"lateness_sum_s", r.lateness_sum_s},
-          {"p95_lateness_s", r.p95_lateness_s},
-          {"max_lateness_s", r.max_lateness_s},
-          {"recoveries", r.recoveries},
-          {"recovery_time_sum_s", r.recovery_time_sum_s},
-          {"unrecovered_episodes", r.unrecovered_episodes},
-          {"primary_delays", r.primary_delays},
-          {"tail_delays", r.tail_delays},
-          {"knock_on_delays", r.knock_on_delays},
-          {"takeovers", r.takeovers},
-          {"arrivals_taken_over", r.arrivals_taken_over},
-          {"traction_kJ", r.traction_kJ},
-          {"regen_kJ", r.regen_kJ},
-          {"used_regen_kJ", r.used_regen_kJ},
-          {"substation_kJ", r.substation_kJ}};
+  nlohmann::json j = {{"day", r.day},
+                      {"arrivals", r.arrivals},
+                      {"punctual", r.punctual},
+                      {"station_arrivals", r.station_arrivals},
+                      {"station_punctual", r.station_punctual},
+                      {"lateness_sum_s", r.lateness_sum_s},
+                      {"p95_lateness_s", r.p95_lateness_s},
+                      {"max_lateness_s", r.max_lateness_s},
+                      {"recoveries", r.recoveries},
+                      {"recovery_time_sum_s", r.recovery_time_sum_s},
+                      {"unrecovered_episodes", r.unrecovered_episodes},
+                      {"primary_delays", r.primary_delays},
+                      {"tail_delays", r.tail_delays},
+                      {"knock_on_delays", r.knock_on_delays},
+                      {"takeovers", r.takeovers},
+                      {"arrivals_taken_over", r.arrivals_taken_over},
+                      {"traction_kJ", r.traction_kJ},
+                      {"regen_kJ", r.regen_kJ},
+                      {"used_regen_kJ", r.used_regen_kJ},
+                      {"substation_kJ", r.substation_kJ},
+                      {"followers_held_up", r.followers_held_up}};
+  if (std::isfinite(r.min_follower_gap_m) && r.min_follower_gap_m < 1e299) {
+    j["min_follower_gap_m"] = r.min_follower_gap_m;
+    j["min_follower_margin_m"] = r.min_follower_margin_m;
+  }
+  return j;
 }
 
 DayRecord day_from_json(const nlohmann::json& j) {
@@ -156,6 +179,11 @@ DayRecord day_from_json(const nlohmann::json& j) {
   r.regen_kJ = j.at("regen_kJ").get<double>();
   r.used_regen_kJ = j.at("used_regen_kJ").get<double>();
   r.substation_kJ = j.at("substation_kJ").get<double>();
+  r.followers_held_up = j.value("followers_held_up", std::int64_t{0});
+  if (j.contains("min_follower_gap_m")) {
+    r.min_follower_gap_m = j.at("min_follower_gap_m").get<double>();
+    r.min_follower_margin_m = j.at("min_follower_margin_m").get<double>();
+  }
   return r;
 }
 
@@ -188,8 +216,9 @@ void check_day(const DayRecord& r) {
     if (r.station_arrivals[i] < 0 || r.station_punctual[i] < 0 ||
         r.station_punctual[i] > r.station_arrivals[i])
       fail("punctual arrivals between 0 and the arrivals at station " + std::to_string(i + 1));
-  for (std::int64_t c : {r.recoveries, r.unrecovered_episodes, r.primary_delays, r.tail_delays,
-                         r.knock_on_delays, r.takeovers, r.arrivals_taken_over})
+  for (std::int64_t c :
+       {r.recoveries, r.unrecovered_episodes, r.primary_delays, r.tail_delays, r.knock_on_delays,
+        r.takeovers, r.arrivals_taken_over, r.followers_held_up})
     if (c < 0) fail("counts >= 0");
   if (r.tail_delays > r.primary_delays) fail("tail delays at most the delays");
   for (double x : {r.lateness_sum_s, r.p95_lateness_s, r.max_lateness_s, r.recovery_time_sum_s})
@@ -199,6 +228,8 @@ void check_day(const DayRecord& r) {
     if (!(std::isfinite(x) && x >= 0.0)) fail("energies finite and >= 0");
   if (r.used_regen_kJ > r.regen_kJ * (1.0 + 1e-9) + 1e-6)
     fail("used regenerated energy at most the regenerated energy");
+  if (!(r.min_follower_gap_m >= 0.0) || !(r.min_follower_margin_m >= -0.01))
+    fail("followers never closer than their braking distance to the train ahead");
 }
 
 }  // namespace
@@ -206,14 +237,11 @@ void check_day(const DayRecord& r) {
 nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard) {
   const MonteCarloStatistics s = summarise(run.days, run.histogram);
   nlohmann::json per_station = nlohmann::json::array();
-  for (std::size_t i = 1; i < s.station_arrivals.size() && i < run.stations.size(); ++i)
-    per_station.push_back(
-        {{"station", run.stations[i]},
-         {"arrivals", s.station_arrivals[i]},
-         {"punctual", s.station_punctual[i]},
-         {"punctuality", s.station_arrivals[i] > 0 ? static_cast<double>(s.station_punctual[i]) /
-                                                         static_cast<double>(s.station_arrivals[i])
-                                                   : 1.0}});
+  for (const StationPunctuality& p : station_punctuality(s, run.stations))
+    per_station.push_back({{"station", p.station},
+                           {"arrivals", p.arrivals},
+                           {"punctual", p.punctual},
+                           {"punctuality", p.punctuality}});
   nlohmann::json days = nlohmann::json::array();
   for (const DayRecord& r : run.days) days.push_back(day_json(r));
   nlohmann::json stats = {{"days", s.days},
@@ -235,7 +263,9 @@ nlohmann::json run_json(const MonteCarloRun& run, const std::string& shard) {
                           {"knock_on_delays", estimate_json(s.knock_on_delays)},
                           {"takeovers", estimate_json(s.takeovers)},
                           {"arrivals_taken_over", estimate_json(s.arrivals_taken_over)},
-                          {"unrecovered_episodes", estimate_json(s.unrecovered_episodes)}};
+                          {"unrecovered_episodes", estimate_json(s.unrecovered_episodes)},
+                          {"followers_held_up", estimate_json(s.followers_held_up)}};
+  if (std::isfinite(s.min_follower_gap_m)) stats["min_follower_gap_m"] = s.min_follower_gap_m;
   nlohmann::json j = {{"format", kFormat},
                       {"config", run.config},
                       {"stations", run.stations},

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,10 +32,18 @@ struct DayRecord {
   std::int64_t unrecovered_episodes = 0;  // late episodes still late at the last station
   std::int64_t primary_delays = 0;        // departures with a drawn delay > 0
   std::int64_t tail_delays = 0;           // of them over the small range (10 s)
-  std::int64_t knock_on_delays = 0;       // departures held by the separation to the train ahead
-  std::int64_t takeovers = 0;             // delays over the take-over threshold (120 s)
-  std::int64_t arrivals_taken_over = 0;   // the arrivals those trains did not serve
+  // Departures held by the train ahead: by the separation (shortcut), or by a wait for the line
+  // ahead to clear (driven followers).
+  std::int64_t knock_on_delays = 0;
+  std::int64_t takeovers = 0;            // delays over the take-over threshold (120 s)
+  std::int64_t arrivals_taken_over = 0;  // the arrivals those trains did not serve
   double traction_kJ = 0.0, regen_kJ = 0.0, used_regen_kJ = 0.0, substation_kJ = 0.0;
+  // Driven followers: trains held up by the one ahead (driven by the follower model), and the
+  // least gap and the least gap beyond the braking distance of their re-simulated runs to the
+  // train ahead (infinite on a day without one; absent from the JSON then).
+  std::int64_t followers_held_up = 0;
+  double min_follower_gap_m = std::numeric_limits<double>::infinity();
+  double min_follower_margin_m = std::numeric_limits<double>::infinity();
   std::vector<std::int64_t> lateness_histogram;  // kLatenessHistogramBins (not in the JSON)
 
   double punctuality() const {
@@ -60,7 +69,8 @@ struct MonteCarloStatistics {
   Estimate punctuality, mean_lateness_s, p95_lateness_s, max_lateness_s, recovery_time_s;
   Estimate traction_kJ, substation_kJ, used_regen_kJ;
   Estimate primary_delays, tail_delays, knock_on_delays, takeovers, arrivals_taken_over,
-      unrecovered_episodes;
+      unrecovered_episodes, followers_held_up;
+  double min_follower_gap_m = std::numeric_limits<double>::infinity();  // least over the days
   std::int64_t arrivals = 0, punctual = 0, recoveries = 0;
   double pooled_punctuality = 0.0;
   double pooled_p95_lateness_s = 0.0;  // from the pooled histogram: upper edge of the bin
@@ -72,6 +82,16 @@ struct MonteCarloStatistics {
 MonteCarloStatistics summarise(const std::vector<DayRecord>& records,
                                const std::vector<std::int64_t>& histogram);
 std::vector<std::int64_t> pooled_histogram(const std::vector<DayRecord>& records);
+
+// Punctuality at each station after the first: its arrivals, the punctual ones and their share
+// (1 at a station without arrivals).
+struct StationPunctuality {
+  std::string station;
+  std::int64_t arrivals = 0, punctual = 0;
+  double punctuality = 1.0;
+};
+std::vector<StationPunctuality> station_punctuality(const MonteCarloStatistics& statistics,
+                                                    const std::vector<std::string>& stations);
 
 // A run or a shard of one: what its JSON holds.
 struct MonteCarloRun {

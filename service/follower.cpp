@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 
 namespace ecorail::service {
@@ -55,18 +56,7 @@ bool arrives(const physics::SimulationResult& sim) {
   return dp::run_arrives(sim) && !sim.stopped_early;
 }
 
-// The clock time from which `run` (a section's run from rest, its own clock from 0) may leave
-// and keep gap >= v^2 / 2b behind the leader at every trace point and at the start: the least
-// departure, whatever the time the train is ready (the leader's position never decreases).
-double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
-                    double section_start_m, double b, double room_m) {
-  double from = leader_clear_at(leader, section_start_m + room_m);
-  for (const physics::TracePoint& p : run.trace) {
-    const double ahead = section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
-    from = std::max(from, leader_clear_at(leader, ahead) - p.t_s);
-  }
-  return from;
-}
+}  // namespace
 
 // A held-up follower given a recovery: a dynamic programme over its stops. A state is the time
 // it is ready to leave a stop (its planned departure, or its arrival plus the least dwell when
@@ -78,13 +68,12 @@ double clear_from_s(const physics::Trip& leader, const physics::SimulationResult
 // back on time at the earliest station, then the least final lateness (when it cannot be back
 // on time by the last stop), then least energy; or, lateness first, the least sum of arrival
 // lateness, then least energy.
-void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
-                      const physics::Trip& leader, const physics::Trip& planned, double b,
-                      double room, int train, const FollowerRecovery& recovery,
-                      std::vector<physics::SimulationResult>& sims,
-                      std::vector<double>& dwell_after, double& trip_departure, FollowerRun& out,
-                      std::vector<CapEvent>* events) {
-  const std::size_t n = library.size();
+std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::Trip& leader,
+                                        const physics::Trip& planned, double b, double room,
+                                        const FollowerRecovery& recovery, std::size_t from,
+                                        std::size_t first, double ready_s) {
+  const std::size_t n = plan.runs.size();
+  if (from >= n || first < from) throw std::invalid_argument("follower_path: a stop to leave");
   constexpr double kLate_s = 0.05;  // later than this is late; lateness sums within it are tied
   struct State {
     double ready_s, lateness, energy_J;
@@ -97,20 +86,11 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     if (clear <= ready) return ready;
     return ready + std::ceil((clear - ready + kWaitMargin_s) * 100.0) / 100.0;
   };
-  // The first section whose planned run, left at its planned departure, must wait: before it
-  // the follower runs its plan (it cannot leave earlier, and slower only makes it late).
-  std::size_t first = 0;
-  for (; first < n; ++first) {
-    const double dep = planned.stop(first).departure_s;
-    if (clear_from_s(leader, plan.runs[first], plan.trip.section_start_m(first), b, room) >
-        dep + 1e-9)
-      break;
-  }
   std::vector<std::vector<const physics::SimulationResult*>> extra;
   if (first < n && recovery.runs) extra = recovery.runs(first);
   std::vector<std::vector<State>> stages(n + 1);
-  stages[0].push_back({trip_departure, 0.0, 0.0, -1, nullptr, trip_departure, 0.0});
-  for (std::size_t k = 0; k < n; ++k) {
+  stages[from].push_back({ready_s, 0.0, 0.0, -1, nullptr, ready_s, 0.0});
+  for (std::size_t k = from; k < n; ++k) {
     std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
     if (k >= first && k - first < extra.size())
       for (const physics::SimulationResult* r : extra[k - first])
@@ -148,21 +128,35 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     }
     // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
     // sums, on ready the rounding of the waits.
-    std::sort(next.begin(), next.end(), [](const State& x, const State& y) {
+    // Sorted by key (small records; ties in every key by the order made, so the states kept do
+    // not depend on the sort's implementation).
+    struct Key {
+      double ready_s, lateness, energy_J;
+      std::size_t index;
+    };
+    std::vector<Key> keys(next.size());
+    for (std::size_t i = 0; i < next.size(); ++i)
+      keys[i] = {next[i].ready_s, next[i].lateness, next[i].energy_J, i};
+    std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
       if (x.ready_s != y.ready_s) return x.ready_s < y.ready_s;
       if (x.lateness != y.lateness) return x.lateness < y.lateness;
-      return x.energy_J < y.energy_J;
+      if (x.energy_J != y.energy_J) return x.energy_J < y.energy_J;
+      return x.index < y.index;
     });
+    // Every state kept before s is ready no later, so s is dominated when a kept state has no
+    // more lateness (within 1e-9) and no more energy (within 1e-6): the least energy of the
+    // kept states up to a lateness is a staircase (lateness up, energy down), one look-up.
     std::vector<State> kept;
-    for (const State& s : next) {
-      bool dominated = false;
-      for (const State& q : kept)
-        if (q.ready_s <= s.ready_s + 1e-9 && q.lateness <= s.lateness + 1e-9 &&
-            q.energy_J <= s.energy_J + 1e-6) {
-          dominated = true;
-          break;
-        }
-      if (!dominated) kept.push_back(s);
+    std::map<double, double> least_energy;  // lateness -> least energy of kept states up to it
+    for (const Key& key : keys) {
+      const State& s = next[key.index];
+      auto it = least_energy.upper_bound(s.lateness + 1e-9);
+      if (it != least_energy.begin() && std::prev(it)->second <= s.energy_J + 1e-6) continue;
+      kept.push_back(s);
+      it = least_energy.lower_bound(s.lateness);
+      while (it != least_energy.end() && it->second >= s.energy_J) it = least_energy.erase(it);
+      if (it != least_energy.begin() && std::prev(it)->second <= s.energy_J) continue;
+      least_energy[s.lateness] = s.energy_J;
     }
     stages[k + 1] = std::move(kept);
   }
@@ -187,16 +181,84 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     if (best < 0 || s.energy_J < final_states[static_cast<std::size_t>(best)].energy_J)
       best = static_cast<int>(i);
   }
-  // Back through the stages: the runs, the waits, the dwells.
-  std::vector<const State*> path(n + 1, nullptr);
-  for (std::size_t k = n; k > 0; --k) {
-    path[k] = &stages[k][static_cast<std::size_t>(best)];
-    best = path[k]->parent;
+  // Back through the stages: the runs, the waits, the readiness.
+  std::vector<FollowerStep> path(n - from);
+  for (std::size_t k = n; k > from; --k) {
+    const State& s = stages[k][static_cast<std::size_t>(best)];
+    const double ready =
+        k - 1 == from ? ready_s : stages[k - 1][static_cast<std::size_t>(s.parent)].ready_s;
+    path[k - 1 - from] = {s.run, ready, s.departure_s, s.line_wait_s};
+    best = s.parent;
   }
+  return path;
+}
+
+// The clock time from which `run` (a section's run from rest, its own clock from 0) may leave
+// and keep gap >= v^2 / 2b behind the leader at every trace point and at the start: the least
+// departure, whatever the time the train is ready (the leader's position never decreases).
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double b, double room_m) {
+  // The largest of leader_clear_at(ahead) - t over the samples, found block by block: the
+  // leader's clear time never falls as the position grows, so a block's farthest need at its
+  // earliest time bounds every sample in it, and only blocks whose bound exceeds the largest
+  // value found so far are evaluated sample by sample (the same maximum as a full pass).
+  constexpr std::size_t kBlock = 32;
+  const auto& trace = run.trace;
+  auto ahead_of = [&](const physics::TracePoint& p) {
+    return section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
+  };
+  double from = leader_clear_at(leader, section_start_m + room_m);
+  struct Block {
+    double bound;
+    std::size_t first;
+  };
+  std::vector<Block> blocks;
+  blocks.reserve(trace.size() / kBlock + 1);
+  for (std::size_t i = 0; i < trace.size(); i += kBlock) {
+    double far = -1e300, early = 1e300;
+    const std::size_t end = std::min(trace.size(), i + kBlock);
+    for (std::size_t q = i; q < end; ++q) {
+      far = std::max(far, ahead_of(trace[q]));
+      early = std::min(early, trace[q].t_s);
+    }
+    blocks.push_back({leader_clear_at(leader, far) - early, i});
+  }
+  std::sort(blocks.begin(), blocks.end(), [](const Block& x, const Block& y) {
+    return x.bound > y.bound || (x.bound == y.bound && x.first < y.first);
+  });
+  for (const Block& blk : blocks) {
+    if (blk.bound <= from) break;
+    const std::size_t end = std::min(trace.size(), blk.first + kBlock);
+    for (std::size_t q = blk.first; q < end; ++q)
+      from = std::max(from, leader_clear_at(leader, ahead_of(trace[q])) - trace[q].t_s);
+  }
+  return from;
+}
+
+namespace {
+
+void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan,
+                      const physics::Trip& leader, const physics::Trip& planned, double b,
+                      double room, int train, const FollowerRecovery& recovery,
+                      std::vector<physics::SimulationResult>& sims,
+                      std::vector<double>& dwell_after, double& trip_departure, FollowerRun& out,
+                      std::vector<CapEvent>* events) {
+  const std::size_t n = library.size();
+  // The first section whose planned run, left at its planned departure, must wait: before it
+  // the follower runs its plan (it cannot leave earlier, and slower only makes it late).
+  std::size_t first = 0;
+  for (; first < n; ++first) {
+    const double dep = planned.stop(first).departure_s;
+    if (clear_from_s(leader, plan.runs[first], plan.trip.section_start_m(first), b, room) >
+        dep + 1e-9)
+      break;
+  }
+  const std::vector<FollowerStep> path =
+      follower_path(plan, leader, planned, b, room, recovery, 0, first, trip_departure);
   out.late_s.assign(n + 1, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
-    const State& s = *path[k + 1];
-    const double ready = k == 0 ? trip_departure : path[k]->ready_s;
+    const FollowerStep& s = path[k];
+    const double ready = s.ready_s;
     const double wait = s.line_wait_s;  // for the line ahead (the rest, for the timetable)
     const double planned_arrival = planned.stop(k + 1).arrival_s;
     if (wait > 0.0 || s.run != &plan.runs[k]) {
@@ -226,7 +288,8 @@ void drive_recovering(const dp::SectionLibrary& library, const ServicePlan& plan
     if (k == 0)
       trip_departure = s.departure_s;
     else
-      dwell_after[k - 1] = s.departure_s - (path[k]->departure_s + path[k]->run->running_time_s);
+      dwell_after[k - 1] =
+          s.departure_s - (path[k - 1].departure_s + path[k - 1].run->running_time_s);
   }
 }
 

@@ -57,6 +57,32 @@ struct FollowerRecovery {
   bool lateness_first = false;
 };
 
+// One section of a held-up follower's path: the run it drives, when it leaves (after any wait
+// for the line ahead) and how long it waited for the line ahead before leaving.
+struct FollowerStep {
+  const physics::SimulationResult* run = nullptr;
+  double ready_s = 0.0;  // when it was ready to leave
+  double departure_s = 0.0;
+  double line_wait_s = 0.0;
+};
+
+// The dynamic programme of a held-up follower (the one drive_follower runs with a
+// FollowerRecovery) over sections [from, n): the follower is ready to leave stop `from` at
+// ready_s; `planned` is its planned run on the clock (plan.trip shifted to its planned first
+// departure); candidate runs besides the planned one are asked of recovery.runs(first) for the
+// sections from `first` (>= from) on. Returns one step per section of [from, n).
+std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::Trip& leader,
+                                        const physics::Trip& planned, double braking_m_s2,
+                                        double room_m, const FollowerRecovery& recovery,
+                                        std::size_t from, std::size_t first, double ready_s);
+
+// The clock time from which `run` (a section's run from rest, its own clock from 0, starting at
+// section_start_m along the line) may leave and keep gap >= v^2 / 2b (and gap >= 0 at rest at
+// its start) behind the leader at every trace point: the least departure, whatever the time
+// the train is ready (the leader's position never decreases).
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double braking_m_s2, double room_m);
+
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
 // whole-line trip on the clock). events (may be null) receives one entry per re-driven section.
 FollowerRun drive_follower(const dp::SectionLibrary& library, const ServicePlan& plan,

@@ -207,7 +207,8 @@ class MonteCarloResult:
 
 def montecarlo(line: Line, train: Train, *, plan: "PlanSource" = None, days: int = 100,
                seed: int = 1,
-               recovery: str = "exact", tail: str = "exponential:30", early_s: float = 10.0,
+               recovery: str = "exact", followers: str = "driven", tail: str = "exponential:30",
+               early_s: float = 10.0,
                run_early_s: float = 0.0, min_dwell_s: float = 30.0, takeover_s: float = 120.0,
                punctual_s: float = 10.0, separation_s: float = -1.0, knot_step_s: float = 1.0,
                step_s: float = 0.1, frontier_span_s: float = 60.0, ds_m: float = 5.0,

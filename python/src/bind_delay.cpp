@@ -195,7 +195,7 @@ struct PyMonteCarlo {
 
 PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, const py::object& plan,
                            long long days, std::int64_t seed, const std::string& recovery_name,
-                           const std::string& tail, double early_s, double run_early_s,
+                           const std::string& followers, const std::string& tail, double early_s, double run_early_s,
                            double min_dwell_s, double takeover_s, double punctual_s,
                            double separation_s, double knot_step_s, double step_s,
                            double frontier_span_s, double ds_m, double dv_kmh, int threads,
@@ -208,6 +208,9 @@ PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, const py::o
     bad_argument("recovery", "'exact', 'exact-punctual' or 'rule'", "'" + recovery_name + "'");
   }
   o.recovery = *policy;
+  const auto model = recovery::follower_model_from_name(followers);
+  if (!model) bad_argument("followers", "'driven' or 'shortcut'", "'" + followers + "'");
+  o.followers = *model;
   std::string why;
   if (!recovery::parse_delay_tail(tail, o.delays, &why)) bad_argument("tail", "a delay tail", why);
   o.seed = static_cast<std::uint64_t>(seed);
@@ -371,7 +374,8 @@ void bind_delay(py::module_& m) {
           "Substation energy of each day, kJ (float64).");
   m.def("montecarlo", &montecarlo_py, py::arg("line"), py::arg("train"), py::kw_only(),
         py::arg("plan") = py::none(), py::arg("days") = 100, py::arg("seed") = 1,
-        py::arg("recovery") = "exact", py::arg("tail") = "exponential:30",
+        py::arg("recovery") = "exact", py::arg("followers") = "driven",
+        py::arg("tail") = "exponential:30",
         py::arg("early_s") = 10.0, py::arg("run_early_s") = 0.0, py::arg("min_dwell_s") = 30.0,
         py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0, py::arg("separation_s") = -1.0,
         py::arg("knot_step_s") = 1.0, py::arg("step_s") = 0.1, py::arg("frontier_span_s") = 60.0,
@@ -381,7 +385,8 @@ void bind_delay(py::module_& m) {
         "Whole service days of the plan under random delays, as `ecorail montecarlo`: plan "
         "None (the 2.1 reference plan), a timetable CSV path or an ecorail.delay.Plan; days from "
         "seed (counter-based draws; the same bytes for any "
-        "threads), recovery 'exact', 'exact-punctual' or 'rule', delay tail e.g. "
+        "threads), recovery 'exact', 'exact-punctual' or 'rule', followers 'driven' (as "
+        "`delay` drives them) or 'shortcut' (the fast mode), delay tail e.g. "
         "'exponential:30'; times in s. cache: the program's frontier and section-run cache "
         "(cache_dir, or its default directory when None), shared with `ecorail montecarlo`.");
 }

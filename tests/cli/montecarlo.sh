@@ -23,6 +23,12 @@ for f in t1.json t1.csv p_lateness.svg p_energy.svg p_punctuality.svg; do
   [ -s "$f" ] || { echo "FAIL: $f not written"; fail=1; }
 done
 grep -q "ecorail montecarlo days 0-11: punctuality" t1.txt || { echo "FAIL: report"; cat t1.txt; fail=1; }
+grep -q "followers driven under the cap" t1.txt || { echo "FAIL: driven not said"; fail=1; }
+# The fast mode says so in its report and its config.
+"$ecorail" "${run[@]}" --followers shortcut --json fast.json > fast.txt \
+  || { echo "FAIL: --followers shortcut"; fail=1; }
+grep -q "followers in the fast mode" fast.txt || { echo "FAIL: fast mode not labelled"; fail=1; }
+grep -q '"followers": "shortcut"' fast.json || { echo "FAIL: fast mode not in config"; fail=1; }
 python3 - <<'PY' || fail=1
 import csv, json
 d = json.load(open("t1.json"))
@@ -42,6 +48,11 @@ assert [p["station"] for p in d["per_station"]] == ["A7", "A8", "A9"]
 assert sum(d["lateness_histogram"]["counts"]) == s["arrivals"]
 assert d["config"]["seed"] == 4 and d["config"]["recovery"] == "exact"
 assert d["config"]["tail"] == "exponential:30"
+# Followers driven by default: every day says how many were held up and how close they came.
+assert d["config"]["followers"] == "driven"
+assert all(x["followers_held_up"] >= 0 for x in d["days"])
+assert all(x.get("min_follower_gap_m", 0.0) >= 0.0 for x in d["days"])
+assert "followers_held_up" in s
 rows = list(csv.DictReader(open("t1.csv")))
 assert len(rows) == 12 and rows[0]["day"] == "0"
 assert abs(float(rows[3]["substation_kJ"]) - d["days"][3]["substation_kJ"]) < 0.01
@@ -87,8 +98,10 @@ assert c["config"]["recovery"] == "exact-punctual"
 assert sum(d["punctual"] for d in c["days"]) >= sum(d["punctual"] for d in e["days"])
 PY
 
-# Plan adjustment: the chosen plan is a timetable CSV montecarlo reads; trips keep their ends.
+# Plan adjustment: the chosen plan is a timetable CSV montecarlo reads; trips keep their ends
+# (in the fast mode: driven followers would solve their runs again for every candidate plan).
 "$ecorail" montecarlo --plan plan.csv --seed 4 "${cache[@]}" --quiet --adjust --search-days 6 \
+  --followers shortcut \
   --thetas 0,1 --extra-dwells 0 --target 0.5 --adjusted-csv adj.csv --json adj.json > adj.txt \
   || { echo "FAIL: adjust"; cat adj.txt; fail=1; }
 python3 - <<'PY' || fail=1
@@ -121,6 +134,7 @@ expect_error "--shard" "${run[@]}" --shard 3/2 --json x.json
 expect_error "--shard" "${run[@]}" --shard 0/2 --json x.json
 expect_error "--shard" "${run[@]}" --shard two --json x.json
 expect_error "--days" montecarlo --plan plan.csv --days 0 --json x.json
+expect_error "--followers" montecarlo --plan plan.csv --days 2 --followers fast --json x.json
 expect_error "--tail" "${run[@]}" --tail gamma:3 --json x.json
 expect_error "--recovery" "${run[@]}" --recovery fast --json x.json
 expect_error "--plan/--reference" montecarlo --days 3 --json x.json

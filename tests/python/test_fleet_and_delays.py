@@ -102,16 +102,23 @@ def test_delay_recover_matches_readme_and_cli(reference, run_cli, cache_dir):
 
 def test_montecarlo_matches_cli(reference, run_cli, cache_dir):
     line, train = reference
+    # The fast mode on the whole line (driven followers solve their runs at every start; they
+    # are compared on a small plan below).
     cli = run_cli("montecarlo", "--reference", "--days", "6", "--seed", "3", "--cache-dir",
-                  cache_dir, "--quiet")
-    one = ecorail.montecarlo(line, train, days=6, seed=3, cache_dir=cache_dir, threads=1)
-    two = ecorail.montecarlo(line, train, days=6, seed=3, cache_dir=cache_dir, threads=2)
+                  cache_dir, "--quiet", "--followers", "shortcut")
+    one = ecorail.montecarlo(line, train, days=6, seed=3, cache_dir=cache_dir, threads=1,
+                             followers="shortcut")
+    two = ecorail.montecarlo(line, train, days=6, seed=3, cache_dir=cache_dir, threads=2,
+                             followers="shortcut")
     assert one.to_dict() == cli
     assert two.to_dict() == cli  # the same days for any thread count
     assert one.day_substation_kJ.shape == (6,)
     assert one.substation_energy_kJ["mean"] == pytest.approx(np.mean(one.day_substation_kJ),
                                                              rel=1e-12)
     assert 0.0 <= one.punctuality["mean"] <= 1.0
+    assert cli["config"]["followers"] == "shortcut"
+    with pytest.raises(ValueError, match="^followers"):
+        ecorail.montecarlo(line, train, days=2, followers="fast", cache_dir=cache_dir)
 
 
 def test_peak_windows_match_cli(reference, run_cli):
@@ -214,6 +221,7 @@ def test_delay_and_montecarlo_on_a_plan_csv(reference, run_cli, cache_dir, tmp_p
     mc = ecorail.montecarlo(line, train, plan="plan.csv", days=4, seed=2, cache_dir=cache_dir,
                             threads=1)
     assert mc.to_dict() == mc_cli
+    assert mc_cli["config"]["followers"] == "driven"  # the default, in both
     assert mc.summary.termination == ecorail.Termination.CONVERGENCE
     assert mc.summary.is_solution_usable
 

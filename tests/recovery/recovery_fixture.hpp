@@ -14,7 +14,9 @@
 #include "data/train_io.hpp"
 #include "dp/section_library.hpp"
 #include "output/frontier_cache.hpp"
+#include "output/section_run_cache.hpp"
 #include "recovery/plan.hpp"
+#include "recovery/section_runs.hpp"
 
 namespace ecorail::recovery::testing {
 
@@ -45,6 +47,15 @@ inline dp::FrontierStore* test_store() {
   static output::FileFrontierStore store(std::string(ECORAIL_BINARY_DIR) +
                                          "/test-cache/recovery-frontiers");
   return &store;
+}
+
+// The Monte Carlo's section runs of the small line, knots every 2 s (the frontier step), kept
+// in the build tree's cache like the frontiers.
+inline SectionRuns& small_runs() {
+  static output::FileSectionRunStore store(std::string(ECORAIL_BINARY_DIR) +
+                                           "/test-cache/recovery-section-runs");
+  static SectionRuns runs(small_library(), test_store(), 2.0, 0.1, &store);
+  return runs;
 }
 
 inline constexpr double kMargin_s = 20.0;  // planned running time above the flat-out run

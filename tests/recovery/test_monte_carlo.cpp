@@ -23,15 +23,8 @@ namespace {
 
 using testing::small_library;
 using testing::small_plan;
+using testing::small_runs;
 using testing::test_store;
-
-SectionRuns& small_runs() {
-  static output::FileSectionRunStore store(std::string(ECORAIL_BINARY_DIR) +
-                                           "/test-cache/recovery-section-runs");
-  // Knots every 2 s (the fixture's frontier step).
-  static SectionRuns runs(small_library(), test_store(), 2.0, 0.1, &store);
-  return runs;
-}
 
 MonteCarloOptions small_options() {
   MonteCarloOptions o;

@@ -1,0 +1,89 @@
+// Speed of the Monte Carlo days with driven followers (question 3.2): simulated service days per
+// second of a day plan (the 240-train 2.2 day of docs/delays.md, given as $ECORAIL_DAY_CSV) with
+// the followers driven by the follower model of `ecorail delay` (the default of `ecorail
+// montecarlo`) and in the fast mode (--followers shortcut), exact recovery, on 1 and 2 threads.
+// Everything made once per plan (frontiers, section runs, the followers' runs with their
+// trajectories) is made before the timings, in the user's frontier cache (as `ecorail
+// montecarlo` keys it, so a run of the command warms it). bench/montecarlo_followers.sh makes
+// the day plan and runs this.
+// Run: ECORAIL_DAY_CSV=day.csv build/bench/bench_monte_carlo_followers --benchmark_min_time=5
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "data/line_loader.hpp"
+#include "data/train_io.hpp"
+#include "output/frontier_cache.hpp"
+#include "output/section_run_cache.hpp"
+#include "recovery/monte_carlo.hpp"
+#include "recovery/plan_source.hpp"
+
+namespace {
+
+using namespace ecorail;
+
+struct Setup {
+  std::unique_ptr<dp::SectionLibrary> library;
+  recovery::Plan plan;
+  std::unique_ptr<output::FileFrontierStore> frontiers;
+  std::unique_ptr<output::FileSectionRunStore> store;
+  std::unique_ptr<recovery::SectionRuns> runs;
+  std::unique_ptr<recovery::MonteCarlo> driven, shortcut;
+};
+
+Setup& setup() {
+  static Setup s = [] {
+    Setup x;
+    const char* csv = std::getenv("ECORAIL_DAY_CSV");
+    if (csv == nullptr || *csv == 0) {
+      std::fprintf(stderr, "set ECORAIL_DAY_CSV to a day plan (bench/montecarlo_followers.sh)\n");
+      std::exit(2);
+    }
+    const auto line = data::default_line();
+    const auto train = data::default_train();
+    recovery::PlanStops ps = recovery::read_plan_stops(line, csv);
+    x.plan = ps.plan;
+    x.library = recovery::plan_section_library(line, train, ps.stops, dp::SectionLibraryOptions{});
+    const auto dir = output::FileFrontierStore::default_directory();
+    x.frontiers = std::make_unique<output::FileFrontierStore>(dir);
+    x.store = std::make_unique<output::FileSectionRunStore>(dir / "section-runs");
+    x.runs = std::make_unique<recovery::SectionRuns>(*x.library, x.frontiers.get(), 1.0, 0.1,
+                                                     x.store.get());
+    recovery::MonteCarloOptions o;
+    x.driven = std::make_unique<recovery::MonteCarlo>(*x.library, x.plan, o, *x.runs);
+    o.followers = recovery::FollowerModel::Shortcut;
+    x.shortcut = std::make_unique<recovery::MonteCarlo>(*x.library, x.plan, o, *x.runs);
+    return x;
+  }();
+  return s;
+}
+
+void Days(benchmark::State& state, const recovery::MonteCarlo& mc) {
+  const int threads = static_cast<int>(state.range(0));
+  const std::uint64_t days = 4;
+  std::uint64_t first = 0;
+  for (auto _ : state) {
+    const auto records = mc.run_days(first, first + days, threads);
+    benchmark::DoNotOptimize(records.data());
+    first += days;
+  }
+  state.counters["days_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * days),
+                                                    benchmark::Counter::kIsRate);
+}
+
+void BM_DrivenFollowerDays(benchmark::State& state) {
+  Days(state, *setup().driven);
+}
+void BM_ShortcutFollowerDays(benchmark::State& state) {
+  Days(state, *setup().shortcut);
+}
+
+BENCHMARK(BM_DrivenFollowerDays)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShortcutFollowerDays)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
