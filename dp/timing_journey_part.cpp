@@ -44,6 +44,13 @@ namespace {
 
 constexpr double kMaxTrim_s = 1.0;
 
+// Prices closer than this (in log lambda) are not told apart: on a grid the running time is a
+// step function of the price, and a bracket this narrow that still holds a sign change holds a
+// jump of the time (seconds between neighbouring prices), which no narrower bracket resolves;
+// the switch-point trims close what is left. (The width at which LambdaBracket stops by default,
+// as the single-section search does.)
+constexpr double kNarrowestLogPrice = 1e-4;
+
 // Where f, falling in x = log(lambda), crosses 0 on [x_min, x_max]: steps from x0 (growing
 // steps, so a far root is bracketed within the small budgets of the price searches) until the
 // sign changes, then the engine's one root search narrows the bracket (dp::LambdaBracket,
@@ -85,7 +92,7 @@ void falling_root(F f, double x0, double step, double x_min, double x_max, int b
     if (fa < 0.0) return;
   }
   LambdaBracket bracket(g, xa, fa, xb, fb, budget - n);
-  bracket.narrow([&] { return found; }, 1e-9);
+  bracket.narrow([&] { return found; }, kNarrowestLogPrice);
 }
 
 // Moves one switch point of run's program with lo_m < position < hi_m (the end of a traction
@@ -229,9 +236,17 @@ class PartSolver {
     return p;
   }
 
+  // A search's evaluation: re-simulated at kSearchStep_m (RK4 at 0.5 m puts the times within
+  // about a millisecond of the fine run's, at a tenth of its cost); the run kept is re-run at
+  // the engine's fine step (fine) before anything is trimmed, checked or returned.
   LambdaRun evaluate(const std::vector<double>& before, double after) {
     ++evaluations_;
-    return engine_.run(prices(before, after), start_, engine_.options().resim_step_m);
+    return engine_.run(prices(before, after), start_, engine_.search_step_m(kSearchStep_m));
+  }
+  LambdaRun fine(LambdaRun run) {
+    if (!run.kept) return run;
+    ++evaluations_;
+    return engine_.fine_run(run);
   }
 
   // Signed miss of point k's time window: > 0 late, < 0 early, 0 inside.
@@ -290,6 +305,7 @@ class PartSolver {
       arrival_at_floor_ = false;
     }
     if (best.ok) x_after_guess_ = best.x_after;
+    best.run = fine(std::move(best.run));
     return best;
   }
 
@@ -895,6 +911,7 @@ class PartSolver {
   static constexpr int kMaxCycles = 6;          // of the searches for several binding points
   static constexpr int kNewtonIterations = 12;  // of meet_bindings_exactly
   static constexpr double kInside_s = 0.1;
+  static constexpr double kSearchStep_m = 0.5;  // re-simulation step of a search's evaluation
   static constexpr double kMovingEndTrim_s = 5.0;
   // What "exactly" means for a window of zero width (docs/ttobench.md).
   static constexpr double kExactTime_s = kZeroWidthTime_s;
