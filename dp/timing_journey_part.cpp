@@ -133,18 +133,31 @@ int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun&
     };
     double fa = at(a, nullptr, nullptr), fb = at(b, nullptr, nullptr);
     if (!(fa >= 0.0 && fb <= 0.0) || !finite(fb)) continue;
-    for (int it = 0; it < 40; ++it) {
-      const double m = 0.5 * (a + b);
-      physics::ControlProgram p;
-      physics::SimulationResult sim;
-      const double fm = at(m, &p, &sim);
-      if (std::abs(fm) <= tol_s) {
-        run.program = std::move(p);
-        run.sim = std::move(sim);
-        run.cost_J = engine.energy_cost_J(run.sim);
-        return used;
-      }
-      (fm > 0.0 ? a : b) = m;
+    // The time is smooth in the switch's position: the engine's one root search (Illinois
+    // regula falsi, bisection while an end does not arrive) needs a few runs where bisection
+    // needs twenty.
+    bool met = false;
+    physics::ControlProgram p_met;
+    physics::SimulationResult sim_met;
+    LambdaBracket root(
+        [&](double x) {
+          physics::ControlProgram p;
+          physics::SimulationResult sim;
+          const double fm = at(x, &p, &sim);
+          if (std::abs(fm) <= tol_s) {
+            met = true;
+            p_met = std::move(p);
+            sim_met = std::move(sim);
+          }
+          return fm;
+        },
+        a, fa, b, fb, 40);
+    root.narrow([&] { return met; }, 1e-9);
+    if (met) {
+      run.program = std::move(p_met);
+      run.sim = std::move(sim_met);
+      run.cost_J = engine.energy_cost_J(run.sim);
+      return used;
     }
   }
   return used;
