@@ -375,7 +375,13 @@ class PartSolver {
                                         [&](const SpeedBand& b) { return b.stage == p.stage; });
         if (!banded && speed_missed(run, p) && p.stage > 0 &&
             p.stage < engine_.grid().stage_count() - 1) {
-          bands_.push_back({p.stage, w.min_speed_ms, w.max_speed_ms});
+          // (A band narrower than the grid's speed step may hold no node: it is widened to
+          // the grid speeds either side, and the last of it closed on the simulator,
+          // meet_bindings_exactly.)
+          const double dv = engine_.grid().dv_ms();
+          const bool narrow = w.max_speed_ms - w.min_speed_ms < dv;
+          bands_.push_back({p.stage, narrow ? w.min_speed_ms - dv : w.min_speed_ms,
+                            narrow ? w.max_speed_ms + dv : w.max_speed_ms});
           new_band = true;
         }
       }
@@ -431,7 +437,7 @@ class PartSolver {
     }
     if (ok && binding_.size() == 1 && !end_.moving) close_gap(run);
     mark_inactive(run);
-    if (ok && !binding_.empty()) meet_bindings_exactly(run);
+    if (ok && (!binding_.empty() || !bands_.empty())) meet_bindings_exactly(run);
     if (ok) {
       for (std::size_t m = 0; m < binding_.size(); ++m) {
         if (inactive(m)) continue;
@@ -636,15 +642,15 @@ class PartSolver {
   // close them: with the points at their bounds the speed at the last one may leave the rest no
   // switch that sets the arrival. Here every residual (each binding point's passing time minus
   // its bound, the arrival minus the latest arrival when it binds, the end speed minus a
-  // zero-width end speed window) is a function of every switch position of the program, and
-  // they are zeroed together by Newton's method on the switch positions: the Jacobian by
-  // finite differences on the simulator (one re-simulation per switch, resumed where the
-  // programs agree), the step of least weighted length that zeroes the linear model
-  // (W J^T (J W J^T)^-1 r, W: each switch's room, squared), halved while it does not lower the
-  // largest residual or would reorder the switches. Small moves of switches are first-order
-  // neutral in the cost at an optimum (its prices are the multipliers), so the run keeps its
-  // cost to first order. The run is replaced only when every window of
-  // the part holds on its re-simulation (holds_exactly); otherwise the search's run stays.
+  // zero-width end speed window, a passing point's speed minus its zero-width speed window) is a
+  // function of every switch position of the program, and they are zeroed together by Newton's
+  // method on the switch positions: the Jacobian by finite differences on the simulator (one
+  // re-simulation per switch, resumed where the programs agree), the step of least weighted length
+  // that zeroes the linear model (W J^T (J W J^T)^-1 r, W: each switch's room, squared), halved
+  // while it does not lower the largest residual or would reorder the switches. Small moves of
+  // switches are first-order neutral in the cost at an optimum (its prices are the multipliers), so
+  // the run keeps its cost to first order. The run is replaced only when every window of the part
+  // holds on its re-simulation (holds_exactly); otherwise the search's run stays.
   void meet_bindings_exactly(LambdaRun& run) {
     std::vector<std::size_t> active;
     for (std::size_t m = 0; m < binding_.size(); ++m) {
@@ -652,6 +658,13 @@ class PartSolver {
     }
     const bool arrival_binds = !arrival_at_floor_;
     const bool pinned_end = end_.moving && end_.min_ms == end_.max_ms;
+    // Passing points whose speed window has zero width (their speed band only holds the
+    // nearest grid speeds).
+    std::vector<const PartPoint*> one_speed;
+    for (const PartPoint& p : points_) {
+      const TimingWindow& w = windows_[p.index];
+      if (w.min_speed_ms == w.max_speed_ms && finite(w.min_speed_ms)) one_speed.push_back(&p);
+    }
     // Residuals scaled by their tolerances (kTrimTolerance_s, 0.5 kExactSpeed_ms).
     auto residuals = [&](const physics::SimulationResult& sim, std::vector<double>& r) {
       r.clear();
@@ -661,6 +674,10 @@ class PartSolver {
       }
       if (arrival_binds) r.push_back((sim.running_time_s - target_s_) / kTrimTolerance_s);
       if (pinned_end) r.push_back((sim.end_speed_ms - end_.min_ms) / (0.5 * kExactSpeed_ms));
+      for (const PartPoint* p : one_speed) {
+        const double v = passing_at(sim.trace, p->s_m).v_ms;
+        r.push_back((v - windows_[p->index].min_speed_ms) / (0.5 * kExactSpeed_ms));
+      }
       bool ok = end_.reaches_end(sim);
       for (double x : r) ok = ok && finite(x);
       return ok;

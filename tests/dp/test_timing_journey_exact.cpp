@@ -356,3 +356,36 @@ TEST(TimingJourneyExact, AZeroWidthPassingWindowBeforeAMovingEndIsMetExactly) {
 
 }  // namespace
 }  // namespace ecorail::dp
+
+namespace ecorail::dp {
+namespace {
+
+// A passing window of zero width in time and in speed (a witness run's time and speed at the
+// point), with the arrival at the witness's time: all met exactly on the re-simulation, and the
+// run no dearer than the witness.
+TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = short_track();
+  const TimingJourneyOptions options = coarse();
+  const SectionEngine engine(train, track, options.engine);
+  std::mt19937 rng(24004);
+  const double s1 = 900.0;
+  const physics::SimulationResult w = witness(engine, rng, s1, 1500.0);
+  ASSERT_TRUE(run_arrives(w));
+  const At at = at_position(w, s1);
+  const double arrive = w.running_time_s;
+  const std::vector<TimingWindow> windows = {
+      stop_at(0, 0, 0), {s1, at.t_s, at.t_s, at.v_ms, at.v_ms}, stop_at(kLength_m, arrive, arrive)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  const physics::SimulationResult& sim = sol.journey.sections.at(0).run.sim;
+  const At got = at_position(sim, s1);
+  EXPECT_NEAR(got.t_s, at.t_s, kExactTime_s);
+  EXPECT_NEAR(got.v_ms, at.v_ms, kExactSpeed_ms);
+  EXPECT_NEAR(sim.running_time_s, arrive, kExactTime_s);
+  EXPECT_LE(sim.energy.traction_work_J, w.energy.traction_work_J * (1.0 + 1e-3));
+}
+
+}  // namespace
+}  // namespace ecorail::dp
