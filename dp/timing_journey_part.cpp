@@ -610,7 +610,12 @@ class PartSolver {
       return;  // the time left is outside what the rest can run
     }
     evaluations_ += rest.iterations;
-    if (!rest.converged) return;
+    // (A rest whose own trim stopped a few milliseconds short is still a rest: the stitched
+    // run's arrival is trimmed below, and every window is checked.)
+    const bool rest_near =
+        run_arrives(rest.run.sim) &&
+        std::abs(rest.run.sim.running_time_s - (target_s_ - at.t_s)) <= kArrivalTolerance_s;
+    if (!rest.converged && !rest_near) return;
     physics::ControlProgram stitched;
     for (const auto& step : trimmed.program) {
       if (step.from_m < s_k) stitched.push_back(step);
