@@ -473,6 +473,9 @@ class PartSolver {
       // Also when the search ended more than kMaxTrim_s from the arrival: the trim here reaches
       // further, and the run is kept only as the windows check it on the re-simulation.
       meet_end_exactly(run);
+      // (What one switch at a time left of a moving end's time and zero-width speed, and of
+      // the binding points, closed jointly.)
+      meet_bindings_exactly(run);
       if (!ok && binding_.empty() && end_(run.sim) &&
           std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s) {
         ok = true;

@@ -361,8 +361,9 @@ namespace ecorail::dp {
 namespace {
 
 // A passing window of zero width in time and in speed (a witness run's time and speed at the
-// point), with the arrival at the witness's time: all met exactly on the re-simulation, and the
-// run no dearer than the witness.
+// point), with the arrival at the witness's time: the point pins the run's state, so it ends
+// one part (moving, at that speed) and starts the next; every window is met exactly on the
+// re-simulation, and the two parts together are no dearer than the witness.
 TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
@@ -379,12 +380,70 @@ TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
   const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
-  const physics::SimulationResult& sim = sol.journey.sections.at(0).run.sim;
-  const At got = at_position(sim, s1);
-  EXPECT_NEAR(got.t_s, at.t_s, kExactTime_s);
-  EXPECT_NEAR(got.v_ms, at.v_ms, kExactSpeed_ms);
-  EXPECT_NEAR(sim.running_time_s, arrive, kExactTime_s);
-  EXPECT_LE(sim.energy.traction_work_J, w.energy.traction_work_J * (1.0 + 1e-3));
+  ASSERT_EQ(sol.parts.size(), 2u);
+  const physics::SimulationResult& first = sol.journey.sections.at(0).run.sim;
+  const physics::SimulationResult& second = sol.journey.sections.at(1).run.sim;
+  EXPECT_NEAR(first.running_time_s, at.t_s, kExactTime_s);
+  EXPECT_NEAR(first.end_speed_ms, at.v_ms, kExactSpeed_ms);
+  EXPECT_DOUBLE_EQ(second.trace.front().v_ms, at.v_ms);
+  EXPECT_NEAR(sol.windows[1].time_s, at.t_s, kExactTime_s);
+  EXPECT_NEAR(sol.windows[1].speed_ms, at.v_ms, kExactSpeed_ms);
+  EXPECT_NEAR(sol.windows[2].time_s, arrive, kExactTime_s);
+  EXPECT_LE(first.energy.traction_work_J + second.energy.traction_work_J,
+            w.energy.traction_work_J * (1.0 + 1e-3));
+}
+
+// Random windows around witness runs, with points whose time and speed are both pinned among
+// them (each of two passing points at random: its time exactly, a latest or an earliest bound
+// at the witness's time, or its time and speed exactly; the stop at the witness's time or in a
+// 10 s window ending there): every window holds on the re-simulation, zero-width ones exactly.
+TEST(TimingJourneyExact, RandomWindowsWithPinnedStatesAreMetExactly) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = short_track();
+  const TimingJourneyOptions options = coarse();
+  const SectionEngine engine(train, track, options.engine);
+  std::mt19937 rng(777);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> kind(0, 3);
+  for (int instance = 0; instance < 8; ++instance) {
+    const double s[2] = {400.0 + 500.0 * u(rng), 1100.0 + 600.0 * u(rng)};
+    const physics::SimulationResult w = witness(engine, rng, s[0], s[1]);
+    ASSERT_TRUE(run_arrives(w));
+    std::vector<TimingWindow> windows = {stop_at(0, 0, 0)};
+    for (double sk : s) {
+      const At at = at_position(w, sk);
+      const int k = kind(rng);
+      TimingWindow pw{sk, -kOpen, kOpen, -kOpen, kOpen};
+      if (k == 0 || k == 3) pw.earliest_s = pw.latest_s = at.t_s;
+      if (k == 1) pw.latest_s = at.t_s;
+      if (k == 2) pw.earliest_s = at.t_s;
+      if (k == 3) pw.min_speed_ms = pw.max_speed_ms = at.v_ms;
+      windows.push_back(pw);
+    }
+    const double arrive = w.running_time_s;
+    windows.push_back(kind(rng) < 2 ? stop_at(kLength_m, arrive, arrive)
+                                    : stop_at(kLength_m, arrive - 10.0, arrive));
+    testing::Message what;
+    what << "instance " << instance << ":";
+    for (const auto& x : windows) {
+      what << " [" << x.position_m << " m: " << x.earliest_s << ", " << x.latest_s << ", "
+           << x.min_speed_ms << " m/s]";
+    }
+    SCOPED_TRACE(what);
+    const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
+    ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+    ASSERT_TRUE(sol.windows_met);
+    for (std::size_t i = 1; i < windows.size(); ++i) {
+      const TimingWindow& x = windows[i];
+      const WindowResult& r = sol.windows[i];
+      const double tt = x.earliest_s == x.latest_s ? kExactTime_s : options.time_tolerance_s;
+      EXPECT_GE(r.time_s, x.earliest_s - tt) << i;
+      EXPECT_LE(r.time_s, x.latest_s + tt) << i;
+      if (x.min_speed_ms == x.max_speed_ms) {
+        EXPECT_NEAR(r.speed_ms, x.min_speed_ms, kExactSpeed_ms) << i;
+      }
+    }
+  }
 }
 
 }  // namespace
