@@ -473,9 +473,14 @@ class PartSolver {
       // Also when the search ended more than kMaxTrim_s from the arrival: the trim here reaches
       // further, and the run is kept only as the windows check it on the re-simulation.
       meet_end_exactly(run);
-      // (What one switch at a time left of a moving end's time and zero-width speed, and of
-      // the binding points, closed jointly.)
-      meet_bindings_exactly(run);
+      // What one switch at a time left of a moving end's time and zero-width speed (outside
+      // what the window check allows) is closed jointly; a run that meets them is left as it
+      // is (the cruise polish below starts from it).
+      const bool time_met =
+          arrival_at_floor_ || std::abs(run.sim.running_time_s - target_s_) <= kExactTime_s;
+      const bool speed_met = end_.min_ms != end_.max_ms ||
+                             std::abs(run.sim.end_speed_ms - end_.min_ms) <= kExactSpeed_ms;
+      if (!(time_met && speed_met)) meet_bindings_exactly(run);
       if (!ok && binding_.empty() && end_(run.sim) &&
           std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s) {
         ok = true;
