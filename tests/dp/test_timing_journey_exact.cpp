@@ -227,6 +227,60 @@ TimingWindow stop_at(double s, double earliest, double latest) {
   return {s, earliest, latest, 0.0, 0.0};
 }
 
+// A random journey around a witness run (feasible for it by construction): passing points at
+// s[0] in [lo0, lo0 + span0] and s[1] in [lo1, lo1 + span1], each given at random a window of
+// zero width at the witness's time there, a latest or an earliest bound at that time, or (its
+// fourth kind) bounds a few seconds either side of it, or its time and speed exactly
+// (pin_state); the stop at the witness's time exactly or in a 10 s window ending there.
+struct RandomJourney {
+  physics::SimulationResult witness;
+  double s[2] = {0.0, 0.0};
+  std::vector<double> witness_times;  // at s[0], s[1] and the stop
+  std::vector<TimingWindow> windows;
+};
+RandomJourney random_journey(const SectionEngine& engine, std::mt19937& rng, double lo0,
+                             double span0, double lo1, double span1, bool pin_state) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> kind(0, 3);
+  RandomJourney j;
+  j.s[0] = lo0 + span0 * u(rng);
+  j.s[1] = lo1 + span1 * u(rng);
+  j.witness = witness(engine, rng, j.s[0], j.s[1]);
+  j.windows = {stop_at(0, 0, 0)};
+  for (double sk : j.s) {
+    const At at = at_position(j.witness, sk);
+    j.witness_times.push_back(at.t_s);
+    const int k = kind(rng);
+    TimingWindow pw{sk, -kOpen, kOpen, -kOpen, kOpen};
+    if (k == 0) pw.earliest_s = pw.latest_s = at.t_s;
+    if (k == 1) pw.latest_s = at.t_s;
+    if (k == 2) pw.earliest_s = at.t_s;
+    if (k == 3 && pin_state) {
+      pw.earliest_s = pw.latest_s = at.t_s;
+      pw.min_speed_ms = pw.max_speed_ms = at.v_ms;
+    }
+    if (k == 3 && !pin_state)
+      pw.earliest_s = at.t_s - 3.0 * u(rng), pw.latest_s = at.t_s + 3.0 * u(rng);
+    j.windows.push_back(pw);
+  }
+  const double arrive = j.witness.running_time_s;
+  j.witness_times.push_back(arrive);
+  j.windows.push_back(kind(rng) < 2 ? stop_at(kLength_m, arrive, arrive)
+                                    : stop_at(kLength_m, arrive - 10.0, arrive));
+  return j;
+}
+
+// "instance i: [position m: earliest, latest, min speed m/s] ..." for a failure's trace.
+testing::Message describe(int instance, const std::vector<TimingWindow>& windows) {
+  testing::Message what;
+  what << "instance " << instance << ":";
+  for (const auto& x : windows) {
+    what << " [" << x.position_m << " m: " << x.earliest_s << ", " << x.latest_s << ", "
+         << x.min_speed_ms << " m/s]";
+  }
+  return what;
+}
+
 // Zero-width time windows at two passing points and at the arrival, taken from random witness
 // runs: every one is met exactly on the re-simulation, and the run costs no more than the
 // witness (a feasible run) and than the brute force's best (within 0.2 %, the grid's
@@ -280,36 +334,13 @@ TEST(TimingJourneyExact, RandomFeasibleWindowsAreMetAndNoDearerThanTheBruteForce
   const TimingJourneyOptions options = coarse();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(24002);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::uniform_int_distribution<int> kind(0, 3);
   for (int instance = 0; instance < 3; ++instance) {
-    const double s[2] = {500.0 + 300.0 * u(rng), 1200.0 + 400.0 * u(rng)};
-    const physics::SimulationResult w = witness(engine, rng, s[0], s[1]);
+    const RandomJourney j = random_journey(engine, rng, 500.0, 300.0, 1200.0, 400.0, false);
+    const physics::SimulationResult& w = j.witness;
+    const std::vector<TimingWindow>& windows = j.windows;
     ASSERT_TRUE(run_arrives(w));
-    std::vector<TimingWindow> windows = {stop_at(0, 0, 0)};
-    std::vector<double> witness_times;
-    for (double sk : s) {
-      const double t = at_position(w, sk).t_s;
-      witness_times.push_back(t);
-      const int k = kind(rng);
-      TimingWindow pw{sk, -kOpen, kOpen, -kOpen, kOpen};
-      if (k == 0) pw.earliest_s = pw.latest_s = t;
-      if (k == 1) pw.latest_s = t;
-      if (k == 2) pw.earliest_s = t;
-      if (k == 3) pw.earliest_s = t - 3.0 * u(rng), pw.latest_s = t + 3.0 * u(rng);
-      windows.push_back(pw);
-    }
-    const double arrive = w.running_time_s;
-    witness_times.push_back(arrive);
-    windows.push_back(kind(rng) < 2 ? stop_at(kLength_m, arrive, arrive)
-                                    : stop_at(kLength_m, arrive - 10.0, arrive));
+    SCOPED_TRACE(describe(instance, windows));
     const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
-    testing::Message what;
-    what << "instance " << instance << ":";
-    for (const auto& x : windows) {
-      what << " [" << x.position_m << " m: " << x.earliest_s << ", " << x.latest_s << "]";
-    }
-    SCOPED_TRACE(what);
     ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
     ASSERT_TRUE(sol.windows_met);
     const physics::SimulationResult& sim = sol.journey.sections.at(0).run.sim;
@@ -323,7 +354,7 @@ TEST(TimingJourneyExact, RandomFeasibleWindowsAreMetAndNoDearerThanTheBruteForce
     }
     const double energy = sim.energy.traction_work_J;
     EXPECT_LE(energy, w.energy.traction_work_J * (1.0 + 1e-3));
-    BruteForce bf(engine, {s[0], s[1], kLength_m}, witness_times);
+    BruteForce bf(engine, {j.s[0], j.s[1], kLength_m}, j.witness_times);
     const double best = bf.best_J(3);
     ASSERT_TRUE(std::isfinite(best));
     EXPECT_LE(energy, best * (1.0 + 2e-3))
@@ -403,33 +434,11 @@ TEST(TimingJourneyExact, RandomWindowsWithPinnedStatesAreMetExactly) {
   const TimingJourneyOptions options = coarse();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(777);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::uniform_int_distribution<int> kind(0, 3);
   for (int instance = 0; instance < 8; ++instance) {
-    const double s[2] = {400.0 + 500.0 * u(rng), 1100.0 + 600.0 * u(rng)};
-    const physics::SimulationResult w = witness(engine, rng, s[0], s[1]);
-    ASSERT_TRUE(run_arrives(w));
-    std::vector<TimingWindow> windows = {stop_at(0, 0, 0)};
-    for (double sk : s) {
-      const At at = at_position(w, sk);
-      const int k = kind(rng);
-      TimingWindow pw{sk, -kOpen, kOpen, -kOpen, kOpen};
-      if (k == 0 || k == 3) pw.earliest_s = pw.latest_s = at.t_s;
-      if (k == 1) pw.latest_s = at.t_s;
-      if (k == 2) pw.earliest_s = at.t_s;
-      if (k == 3) pw.min_speed_ms = pw.max_speed_ms = at.v_ms;
-      windows.push_back(pw);
-    }
-    const double arrive = w.running_time_s;
-    windows.push_back(kind(rng) < 2 ? stop_at(kLength_m, arrive, arrive)
-                                    : stop_at(kLength_m, arrive - 10.0, arrive));
-    testing::Message what;
-    what << "instance " << instance << ":";
-    for (const auto& x : windows) {
-      what << " [" << x.position_m << " m: " << x.earliest_s << ", " << x.latest_s << ", "
-           << x.min_speed_ms << " m/s]";
-    }
-    SCOPED_TRACE(what);
+    const RandomJourney j = random_journey(engine, rng, 400.0, 500.0, 1100.0, 600.0, true);
+    const std::vector<TimingWindow>& windows = j.windows;
+    ASSERT_TRUE(run_arrives(j.witness));
+    SCOPED_TRACE(describe(instance, windows));
     const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
     ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
     ASSERT_TRUE(sol.windows_met);
