@@ -97,15 +97,26 @@ std::vector<std::unique_ptr<FlatOutModel>> build_parts(const physics::Train& tra
   for (const PartBounds& b : jy.bounds) {
     out.routes.push_back(
         slice_route(track, windows[b.first].position_m, windows[b.last].position_m));
-    const bool moving = b.last == n - 1 && moving_end.moving;
-    jy.ends.push_back(moving ? moving_end : EndCheck{});
-    jy.envelope_routes.push_back(moving ? runoff_route(train, out.routes.back(), moving_end.max_ms,
+    // A part that ends at a point pinning the state (before the last) ends moving at its speed.
+    EndCheck pinned_end;
+    const bool pinned = b.last < n - 1 && pins_the_state(windows[b.last]);
+    if (pinned) {
+      pinned_end.moving = true;
+      pinned_end.min_ms = pinned_end.max_ms = windows[b.last].min_speed_ms;
+      pinned_end.tol_ms = jy.tol_v;
+    }
+    const bool moving = (b.last == n - 1 && moving_end.moving) || pinned;
+    const EndCheck& end = pinned ? pinned_end : moving_end;
+    jy.ends.push_back(moving ? end : EndCheck{});
+    jy.envelope_routes.push_back(moving ? runoff_route(train, out.routes.back(), end.max_ms,
                                                        engine_options.envelope_resolution_m)
                                         : out.routes.back());
     flat_out.push_back(std::make_unique<FlatOutModel>(train, out.routes.back(),
                                                       jy.envelope_routes.back(), engine_options));
-    // A run that starts moving starts at the first point's lowest allowed speed.
-    const double v0 = b.first == 0 ? std::max(0.0, windows[0].min_speed_ms) : 0.0;
+    // A run that starts moving (the first point, or a point pinning the state) starts at the
+    // point's lowest allowed speed.
+    const bool moving_start = b.first == 0 || pins_the_state(windows[b.first]);
+    const double v0 = moving_start ? std::max(0.0, windows[b.first].min_speed_ms) : 0.0;
     jy.starts.push_back({0.0, v0});
   }
   const double top = flat_out[0]->envelope().v_at(0.0);
@@ -327,7 +338,12 @@ bool record_windows(const Journey& jy, const std::vector<std::vector<PartPoint>>
       }
       windows_met = windows_met && r.met;
     };
-    record(part.first_point, part.departure_s, starts[j].speed_ms, true, false, 0.0);
+    // (A point pinning the state ends the part before and starts this one: it is checked on
+    // the arrival of the part before, which this departure would overwrite with its bounds.)
+    if (!(j > 0 && out.parts[j - 1].last_point == part.first_point &&
+          pins_the_state(windows[part.first_point]))) {
+      record(part.first_point, part.departure_s, starts[j].speed_ms, true, false, 0.0);
+    }
     for (const PartPoint& p : part_points[j]) {
       const Passing at = passing_at(sim.trace, p.s_m);
       record(p.index, part.departure_s + at.t_s, at.v_ms, false, false, binding_sign[p.index],

@@ -10,12 +10,17 @@
 
 namespace ecorail::dp::timing {
 
+bool pins_the_state(const TimingWindow& w) {
+  return !w.is_stop() && finite(w.earliest_s) && w.earliest_s == w.latest_s &&
+         finite(w.min_speed_ms) && w.min_speed_ms == w.max_speed_ms && w.min_speed_ms > 0.0;
+}
+
 std::vector<PartBounds> split_into_parts(const std::vector<TimingWindow>& w) {
   std::vector<PartBounds> parts;
   int first = 0;
   const int n = static_cast<int>(w.size());
   for (int i = 1; i < n; ++i) {
-    if (!(w[i].is_stop() || i == n - 1)) continue;
+    if (!(w[i].is_stop() || pins_the_state(w[i]) || i == n - 1)) continue;
     parts.push_back({first, i});
     // Two points at one position: arrival at and departure from the stop.
     if (i + 1 < n && w[i + 1].position_m == w[i].position_m) ++i;

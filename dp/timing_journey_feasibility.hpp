@@ -20,8 +20,13 @@ struct PartBounds {
   int first = 0, last = 0;
 };
 
-// A stop (speed window [0, 0]) or the last point ends a part; two points at one position are
-// the arrival at and the departure from a stop.
+// A passing point whose windows fix its whole state: one time and one speed above 0 (zero-width
+// windows). The run before it and the run after it do not interact (principle of optimality),
+// so such a point ends one part (moving, at that speed) and starts the next.
+bool pins_the_state(const TimingWindow& w);
+
+// A stop (speed window [0, 0]), a point that pins the state, or the last point ends a part;
+// two points at one position are the arrival at and the departure from a stop.
 std::vector<PartBounds> split_into_parts(const std::vector<TimingWindow>& w);
 
 // WindowInfeasibleError for a journey the solver does not take: fewer than two points, a point

@@ -44,6 +44,13 @@ namespace {
 
 constexpr double kMaxTrim_s = 1.0;
 
+// Prices closer than this (in log lambda) are not told apart: on a grid the running time is a
+// step function of the price, and a bracket this narrow that still holds a sign change holds a
+// jump of the time (seconds between neighbouring prices), which no narrower bracket resolves;
+// the switch-point trims close what is left. (The width at which LambdaBracket stops by default,
+// as the single-section search does.)
+constexpr double kNarrowestLogPrice = 1e-4;
+
 // Where f, falling in x = log(lambda), crosses 0 on [x_min, x_max]: steps from x0 (growing
 // steps, so a far root is bracketed within the small budgets of the price searches) until the
 // sign changes, then the engine's one root search narrows the bracket (dp::LambdaBracket,
@@ -85,7 +92,7 @@ void falling_root(F f, double x0, double step, double x_min, double x_max, int b
     if (fa < 0.0) return;
   }
   LambdaBracket bracket(g, xa, fa, xb, fb, budget - n);
-  bracket.narrow([&] { return found; }, 1e-9);
+  bracket.narrow([&] { return found; }, kNarrowestLogPrice);
 }
 
 // Moves one switch point of run's program with lo_m < position < hi_m (the end of a traction
@@ -126,18 +133,31 @@ int trim_switch(const SectionEngine& engine, const EndCheck& arrives, LambdaRun&
     };
     double fa = at(a, nullptr, nullptr), fb = at(b, nullptr, nullptr);
     if (!(fa >= 0.0 && fb <= 0.0) || !finite(fb)) continue;
-    for (int it = 0; it < 40; ++it) {
-      const double m = 0.5 * (a + b);
-      physics::ControlProgram p;
-      physics::SimulationResult sim;
-      const double fm = at(m, &p, &sim);
-      if (std::abs(fm) <= tol_s) {
-        run.program = std::move(p);
-        run.sim = std::move(sim);
-        run.cost_J = engine.energy_cost_J(run.sim);
-        return used;
-      }
-      (fm > 0.0 ? a : b) = m;
+    // The time is smooth in the switch's position: the engine's one root search (Illinois
+    // regula falsi, bisection while an end does not arrive) needs a few runs where bisection
+    // needs twenty.
+    bool met = false;
+    physics::ControlProgram p_met;
+    physics::SimulationResult sim_met;
+    LambdaBracket root(
+        [&](double x) {
+          physics::ControlProgram p;
+          physics::SimulationResult sim;
+          const double fm = at(x, &p, &sim);
+          if (std::abs(fm) <= tol_s) {
+            met = true;
+            p_met = std::move(p);
+            sim_met = std::move(sim);
+          }
+          return fm;
+        },
+        a, fa, b, fb, 40);
+    root.narrow([&] { return met; }, 1e-9);
+    if (met) {
+      run.program = std::move(p_met);
+      run.sim = std::move(sim_met);
+      run.cost_J = engine.energy_cost_J(run.sim);
+      return used;
     }
   }
   return used;
@@ -198,7 +218,8 @@ class PartSolver {
   }
 
   // How far inside its bound a binding passing point may pass (see search_target_s).
-  double binding_slack_s() const { return binding_.size() > 1 ? 2.0 * kInside_s : 0.0; }
+  // (0 once meet_bindings_exactly has put every binding point at its bound.)
+  double binding_slack_s() const { return binding_.size() > 1 && !exact_ ? 2.0 * kInside_s : 0.0; }
   // The sign of point k's multiplier: +1 its latest bound binds (the price before it is the
   // higher), -1 its earliest, 0 it does not bind.
   int binding_sign(int k) const {
@@ -228,9 +249,17 @@ class PartSolver {
     return p;
   }
 
+  // A search's evaluation: re-simulated at kSearchStep_m (RK4 at 0.5 m puts the times within
+  // about a millisecond of the fine run's, at a tenth of its cost); the run kept is re-run at
+  // the engine's fine step (fine) before anything is trimmed, checked or returned.
   LambdaRun evaluate(const std::vector<double>& before, double after) {
     ++evaluations_;
-    return engine_.run(prices(before, after), start_, engine_.options().resim_step_m);
+    return engine_.run(prices(before, after), start_, engine_.search_step_m(kSearchStep_m));
+  }
+  LambdaRun fine(LambdaRun run) {
+    if (!run.kept) return run;
+    ++evaluations_;
+    return engine_.fine_run(run);
   }
 
   // Signed miss of point k's time window: > 0 late, < 0 early, 0 inside.
@@ -289,6 +318,7 @@ class PartSolver {
       arrival_at_floor_ = false;
     }
     if (best.ok) x_after_guess_ = best.x_after;
+    best.run = fine(std::move(best.run));
     return best;
   }
 
@@ -345,7 +375,13 @@ class PartSolver {
                                         [&](const SpeedBand& b) { return b.stage == p.stage; });
         if (!banded && speed_missed(run, p) && p.stage > 0 &&
             p.stage < engine_.grid().stage_count() - 1) {
-          bands_.push_back({p.stage, w.min_speed_ms, w.max_speed_ms});
+          // (A band narrower than the grid's speed step may hold no node: it is widened to
+          // the grid speeds either side, and the last of it closed on the simulator,
+          // meet_bindings_exactly.)
+          const double dv = engine_.grid().dv_ms();
+          const bool narrow = w.max_speed_ms - w.min_speed_ms < dv;
+          bands_.push_back({p.stage, narrow ? w.min_speed_ms - dv : w.min_speed_ms,
+                            narrow ? w.max_speed_ms + dv : w.max_speed_ms});
           new_band = true;
         }
       }
@@ -401,13 +437,14 @@ class PartSolver {
     }
     if (ok && binding_.size() == 1 && !end_.moving) close_gap(run);
     mark_inactive(run);
+    if (ok && (!binding_.empty() || !bands_.empty())) meet_bindings_exactly(run);
     if (ok) {
       for (std::size_t m = 0; m < binding_.size(); ++m) {
         if (inactive(m)) continue;
         const PartPoint& p = points_[binding_[m]];
         const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_[m]);
         const double allowed =
-            binding_.size() == 1 ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
+            binding_.size() == 1 || exact_ ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
         // (A run outside the window is reported as missing it, on the re-simulation.)
         const double t = passing_at(run.sim.trace, p.s_m).t_s;
         const bool inside = t >= p.earliest_s - options_.time_tolerance_s &&
@@ -436,6 +473,14 @@ class PartSolver {
       // Also when the search ended more than kMaxTrim_s from the arrival: the trim here reaches
       // further, and the run is kept only as the windows check it on the re-simulation.
       meet_end_exactly(run);
+      // What one switch at a time left of a moving end's time and zero-width speed (outside
+      // what the window check allows) is closed jointly; a run that meets them is left as it
+      // is (the cruise polish below starts from it).
+      const bool time_met =
+          arrival_at_floor_ || std::abs(run.sim.running_time_s - target_s_) <= kExactTime_s;
+      const bool speed_met = end_.min_ms != end_.max_ms ||
+                             std::abs(run.sim.end_speed_ms - end_.min_ms) <= kExactSpeed_ms;
+      if (!(time_met && speed_met)) meet_bindings_exactly(run);
       if (!ok && binding_.empty() && end_(run.sim) &&
           std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s) {
         ok = true;
@@ -573,7 +618,12 @@ class PartSolver {
       return;  // the time left is outside what the rest can run
     }
     evaluations_ += rest.iterations;
-    if (!rest.converged) return;
+    // (A rest whose own trim stopped a few milliseconds short is still a rest: the stitched
+    // run's arrival is trimmed below, and every window is checked.)
+    const bool rest_near =
+        run_arrives(rest.run.sim) &&
+        std::abs(rest.run.sim.running_time_s - (target_s_ - at.t_s)) <= kArrivalTolerance_s;
+    if (!rest.converged && !rest_near) return;
     physics::ControlProgram stitched;
     for (const auto& step : trimmed.program) {
       if (step.from_m < s_k) stitched.push_back(step);
@@ -597,6 +647,204 @@ class PartSolver {
     }
     trim_arrival(out, s_k);
     run = std::move(out);
+  }
+
+  // The binding windows put at their bounds, jointly. The price search leaves each binding
+  // point up to 2 kInside_s inside its bound (search_target_s, several binding points) or the
+  // arrival a few tenths from its time, and one switch per equation (trim_switch) cannot always
+  // close them: with the points at their bounds the speed at the last one may leave the rest no
+  // switch that sets the arrival. Here every residual (each binding point's passing time minus
+  // its bound, the arrival minus the latest arrival when it binds, the end speed minus a
+  // zero-width end speed window, a passing point's speed minus its zero-width speed window) is a
+  // function of every switch position of the program, and they are zeroed together by Newton's
+  // method on the switch positions: the Jacobian by finite differences on the simulator (one
+  // re-simulation per switch, resumed where the programs agree), the step of least weighted length
+  // that zeroes the linear model (W J^T (J W J^T)^-1 r, W: each switch's room, squared), halved
+  // while it does not lower the largest residual or would reorder the switches. Small moves of
+  // switches are first-order neutral in the cost at an optimum (its prices are the multipliers), so
+  // the run keeps its cost to first order. The run is replaced only when every window of the part
+  // holds on its re-simulation (holds_exactly); otherwise the search's run stays.
+  void meet_bindings_exactly(LambdaRun& run) {
+    std::vector<std::size_t> active;
+    for (std::size_t m = 0; m < binding_.size(); ++m) {
+      if (!inactive(m)) active.push_back(m);
+    }
+    const bool arrival_binds = !arrival_at_floor_;
+    const bool pinned_end = end_.moving && end_.min_ms == end_.max_ms;
+    // Passing points whose speed window has zero width (their speed band only holds the
+    // nearest grid speeds).
+    std::vector<const PartPoint*> one_speed;
+    for (const PartPoint& p : points_) {
+      const TimingWindow& w = windows_[p.index];
+      if (w.min_speed_ms == w.max_speed_ms && finite(w.min_speed_ms)) one_speed.push_back(&p);
+    }
+    // Residuals scaled by their tolerances (kTrimTolerance_s, 0.5 kExactSpeed_ms).
+    auto residuals = [&](const physics::SimulationResult& sim, std::vector<double>& r) {
+      r.clear();
+      for (std::size_t m : active) {
+        const double t = passing_at(sim.trace, points_[binding_[m]].s_m).t_s;
+        r.push_back((t - bound_s_[m]) / kTrimTolerance_s);
+      }
+      if (arrival_binds) r.push_back((sim.running_time_s - target_s_) / kTrimTolerance_s);
+      if (pinned_end) r.push_back((sim.end_speed_ms - end_.min_ms) / (0.5 * kExactSpeed_ms));
+      for (const PartPoint* p : one_speed) {
+        const double v = passing_at(sim.trace, p->s_m).v_ms;
+        r.push_back((v - windows_[p->index].min_speed_ms) / (0.5 * kExactSpeed_ms));
+      }
+      bool ok = end_.reaches_end(sim);
+      for (double x : r) ok = ok && finite(x);
+      return ok;
+    };
+    auto norm = [](const std::vector<double>& r) {
+      double worst = 0.0;
+      for (double x : r) worst = std::max(worst, std::abs(x));
+      return worst;
+    };
+    std::vector<double> r;
+    if (!residuals(run.sim, r) || r.empty() || norm(r) <= 1.0) {
+      if (!r.empty() && norm(r) <= 1.0) exact_ = true;
+      return;
+    }
+    LambdaRun cand = run;
+    const double length = engine_.route().length_m();
+    constexpr double kStep_m = 0.5;      // finite-difference step of a switch
+    constexpr double kMaxRoom_m = 50.0;  // a switch's weight stops growing with its room
+    for (int iter = 0; iter < kNewtonIterations; ++iter) {
+      const physics::ControlProgram& prog = cand.program;
+      const std::size_t n = prog.size();
+      std::vector<std::size_t> sw;  // the program's switches (entry 0 is the start)
+      for (std::size_t k = 1; k < n; ++k) sw.push_back(k);
+      const std::size_t q = r.size(), u = sw.size();
+      if (u == 0) return;
+      // J (q x u), by forward differences (backward where the switch cannot move forward).
+      std::vector<double> jac(q * u, 0.0);
+      std::vector<double> rk;
+      for (std::size_t c = 0; c < u; ++c) {
+        const std::size_t k = sw[c];
+        const double next = k + 1 < n ? prog[k + 1].from_m : length;
+        const double h = prog[k].from_m + kStep_m < next ? kStep_m : -kStep_m;
+        if (prog[k].from_m + h <= prog[k - 1].from_m) continue;
+        physics::ControlProgram p = prog;
+        p[k].from_m += h;
+        const physics::SimulationResult sim = engine_.resimulate(p, cand.start, cand.sim);
+        ++evaluations_;
+        if (!residuals(sim, rk)) continue;  // (a column left at 0: that switch is not used)
+        for (std::size_t i = 0; i < q; ++i) jac[i * u + c] = (rk[i] - r[i]) / h;
+      }
+      // y = (J J^T + eps I)^-1 r, dx = -J^T y.
+      // Weighted by each switch's room (the shorter of the phases on either side, squared):
+      // a switch between two long phases takes the move, one that bounds a short phase hardly
+      // moves, so the step keeps the switches in order.
+      std::vector<double> wt(u, 0.0);
+      for (std::size_t c = 0; c < u; ++c) {
+        const std::size_t k = sw[c];
+        const double next = k + 1 < n ? prog[k + 1].from_m : length;
+        const double room =
+            std::min({prog[k].from_m - prog[k - 1].from_m, next - prog[k].from_m, kMaxRoom_m});
+        wt[c] = room * room;
+      }
+      std::vector<double> a(q * q, 0.0), y = r;
+      for (std::size_t i = 0; i < q; ++i) {
+        for (std::size_t j = 0; j < q; ++j) {
+          for (std::size_t c = 0; c < u; ++c) {
+            a[i * q + j] += jac[i * u + c] * wt[c] * jac[j * u + c];
+          }
+        }
+      }
+      double diag = 0.0;
+      for (std::size_t i = 0; i < q; ++i) diag = std::max(diag, a[i * q + i]);
+      if (!(diag > 0.0)) return;
+      for (std::size_t i = 0; i < q; ++i) a[i * q + i] += 1e-12 * diag;
+      if (!solve_dense(a, y, q)) return;
+      std::vector<double> dx(u, 0.0);
+      for (std::size_t c = 0; c < u; ++c) {
+        for (std::size_t i = 0; i < q; ++i) dx[c] -= wt[c] * jac[i * u + c] * y[i];
+      }
+      // The step, halved while the switches would cross or the residual does not fall.
+      const double before = norm(r);
+      bool moved = false;
+      for (double f = 1.0; f > 1e-3 && !moved; f *= 0.5) {
+        physics::ControlProgram p = prog;
+        bool ordered = true;
+        for (std::size_t c = 0; c < u; ++c) p[sw[c]].from_m += f * dx[c];
+        for (std::size_t k = 1; k < n && ordered; ++k) {
+          const double next = k + 1 < n ? p[k + 1].from_m : length;
+          ordered = p[k].from_m > p[k - 1].from_m + 1e-6 && p[k].from_m < next - 1e-6;
+        }
+        if (!ordered) continue;
+        physics::SimulationResult sim = engine_.resimulate(p, cand.start, cand.sim);
+        ++evaluations_;
+        std::vector<double> rn;
+        if (!residuals(sim, rn) || !(norm(rn) < before)) continue;
+        cand.program = std::move(p);
+        cand.sim = std::move(sim);
+        r = std::move(rn);
+        moved = true;
+      }
+      if (!moved) return;
+      if (norm(r) <= 1.0) break;
+    }
+    if (!(norm(r) <= 1.0)) return;
+    cand.cost_J = engine_.energy_cost_J(cand.sim);
+    if (!holds_exactly(cand, active, arrival_binds)) return;
+    run = std::move(cand);
+    exact_ = true;
+  }
+
+  // Solves a x = b in place (a: n x n, row-major; Gaussian elimination with partial
+  // pivoting). False for a singular a.
+  static bool solve_dense(std::vector<double>& a, std::vector<double>& b, std::size_t n) {
+    for (std::size_t c = 0; c < n; ++c) {
+      std::size_t piv = c;
+      for (std::size_t i = c + 1; i < n; ++i) {
+        if (std::abs(a[i * n + c]) > std::abs(a[piv * n + c])) piv = i;
+      }
+      if (!(std::abs(a[piv * n + c]) > 0.0)) return false;
+      if (piv != c) {
+        for (std::size_t j = 0; j < n; ++j) std::swap(a[c * n + j], a[piv * n + j]);
+        std::swap(b[c], b[piv]);
+      }
+      for (std::size_t i = c + 1; i < n; ++i) {
+        const double f = a[i * n + c] / a[c * n + c];
+        for (std::size_t j = c; j < n; ++j) a[i * n + j] -= f * a[c * n + j];
+        b[i] -= f * b[c];
+      }
+    }
+    for (std::size_t c = n; c-- > 0;) {
+      for (std::size_t j = c + 1; j < n; ++j) b[c] -= a[c * n + j] * b[j];
+      b[c] /= a[c * n + c];
+    }
+    return true;
+  }
+
+  // Whether every window of the part holds on r's re-simulation, the binding points in active
+  // at their bounds and the arrival (when it binds) at its latest, within kTrimTolerance_s.
+  bool holds_exactly(const LambdaRun& r, const std::vector<std::size_t>& active,
+                     bool arrival_binds) const {
+    if (!end_(r.sim)) return false;
+    const double late = r.sim.running_time_s - target_s_;
+    if (arrival_binds
+            ? !(std::abs(late) <= kTrimTolerance_s)
+            : !(late <= options_.time_tolerance_s &&
+                r.sim.running_time_s >= earliest_arrival_s_ - options_.time_tolerance_s)) {
+      return false;
+    }
+    for (std::size_t m : active) {
+      const double t = passing_at(r.sim.trace, points_[binding_[m]].s_m).t_s;
+      if (!(std::abs(t - bound_s_[m]) <= kTrimTolerance_s)) return false;
+    }
+    const double tol_v = units::kmh_to_ms(options_.speed_tolerance_kmh);
+    for (const PartPoint& p : points_) {
+      const TimingWindow& w = windows_[p.index];
+      const Passing at = passing_at(r.sim.trace, p.s_m);
+      const double tt = w.earliest_s == w.latest_s ? kTrimTolerance_s : options_.time_tolerance_s;
+      const double tv = w.min_speed_ms == w.max_speed_ms ? 0.5 * kExactSpeed_ms : tol_v;
+      if (!finite(at.t_s) || at.t_s < p.earliest_s - tt || at.t_s > p.latest_s + tt ||
+          at.v_ms < w.min_speed_ms - tv || at.v_ms > w.max_speed_ms + tv) {
+        return false;
+      }
+    }
+    return true;
   }
 
   // Adds points_[k] to the binding set (kept in order along the part), its price starting at
@@ -703,8 +951,10 @@ class PartSolver {
   static constexpr double kTrimTolerance_s = 0.5 * kZeroWidthTime_s;
   static constexpr int kInnerBudget = 40;
   static constexpr int kOuterBudget = 25;
-  static constexpr int kMaxCycles = 6;  // of the searches for several binding points
+  static constexpr int kMaxCycles = 6;          // of the searches for several binding points
+  static constexpr int kNewtonIterations = 12;  // of meet_bindings_exactly
   static constexpr double kInside_s = 0.1;
+  static constexpr double kSearchStep_m = 0.5;  // re-simulation step of a search's evaluation
   static constexpr double kMovingEndTrim_s = 5.0;
   // What "exactly" means for a window of zero width (docs/ttobench.md).
   static constexpr double kExactTime_s = kZeroWidthTime_s;
@@ -723,6 +973,7 @@ class PartSolver {
   // The binding passing points (indices into points_, in order along the part), the bound each
   // meets and the price of the stretch ending at it; lambda_after_ after the last of them.
   bool arrival_at_floor_ = false;  // the last arrival search: even its lowest price is early
+  bool exact_ = false;             // meet_bindings_exactly put every binding point at its bound
   std::vector<int> binding_;
   std::vector<bool> inactive_;  // per binding point (see inactive())
   std::vector<double> bound_s_;
