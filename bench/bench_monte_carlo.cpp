@@ -15,6 +15,7 @@
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
+#include "monte_carlo_days.hpp"
 #include "output/frontier_cache.hpp"
 #include "output/section_run_cache.hpp"
 #include "recovery/monte_carlo.hpp"
@@ -62,16 +63,7 @@ void Days(benchmark::State& state, recovery::RecoveryPolicy policy) {
   recovery::MonteCarloOptions o;
   o.recovery = policy;
   const recovery::MonteCarlo mc(*s.library, s.plan, o, *s.runs);
-  const int threads = static_cast<int>(state.range(0));
-  const std::uint64_t days = 8;
-  std::uint64_t first = 0;
-  for (auto _ : state) {
-    const auto records = mc.run_days(first, first + days, threads);
-    benchmark::DoNotOptimize(records.data());
-    first += days;
-  }
-  state.counters["days_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * days),
-                                                    benchmark::Counter::kIsRate);
+  bench::time_days(state, mc, 8);
 }
 
 void BM_ExactDays(benchmark::State& state) {

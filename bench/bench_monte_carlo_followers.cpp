@@ -16,6 +16,7 @@
 
 #include "data/line_loader.hpp"
 #include "data/train_io.hpp"
+#include "monte_carlo_days.hpp"
 #include "output/frontier_cache.hpp"
 #include "output/section_run_cache.hpp"
 #include "recovery/monte_carlo.hpp"
@@ -61,24 +62,11 @@ Setup& setup() {
   return s;
 }
 
-void Days(benchmark::State& state, const recovery::MonteCarlo& mc) {
-  const int threads = static_cast<int>(state.range(0));
-  const std::uint64_t days = 4;
-  std::uint64_t first = 0;
-  for (auto _ : state) {
-    const auto records = mc.run_days(first, first + days, threads);
-    benchmark::DoNotOptimize(records.data());
-    first += days;
-  }
-  state.counters["days_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * days),
-                                                    benchmark::Counter::kIsRate);
-}
-
 void BM_DrivenFollowerDays(benchmark::State& state) {
-  Days(state, *setup().driven);
+  bench::time_days(state, *setup().driven, 4);
 }
 void BM_ShortcutFollowerDays(benchmark::State& state) {
-  Days(state, *setup().shortcut);
+  bench::time_days(state, *setup().shortcut, 4);
 }
 
 BENCHMARK(BM_DrivenFollowerDays)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -33,7 +33,7 @@
 #include "output/montecarlo_plots.hpp"
 #include "output/montecarlo_tables.hpp"
 #include "output/section_run_cache.hpp"
-#include "output/timetable_csv.hpp"
+#include "output/timetable_csv_writer.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery/monte_carlo_run.hpp"
 #include "recovery/plan_adjustment.hpp"

@@ -156,6 +156,34 @@ void optimal_split(const std::vector<const SectionEngine*>& engines,
       return;
     }
   }
+  // No one section can take the residual (equal sections jump in lambda together, so the
+  // residual is a multiple of one section's jump): it is shared evenly by the k longest-running
+  // sections, each trimmed by residual / k, for k = all, ..., 4, 2, the first that works. A trim
+  // costs second order in its length at the optimum, so k sections sharing it cost 1/k of one
+  // taking it all; for equal sections all k keep the split symmetric, as their common convex
+  // frontier wants.
+  std::vector<std::size_t> shares;  // all, ..., 8, 4, 2
+  for (std::size_t k = 2; opt.trim && order.size() >= 2; k *= 2) {
+    shares.insert(shares.begin(), std::min(k, order.size()));
+    if (k >= order.size()) break;
+  }
+  for (const std::size_t k : shares) {
+    std::vector<LambdaRun> trial = best;
+    bool all = true;
+    for (std::size_t j = 0; j < k && all; ++j) {
+      const std::size_t i = order[j];
+      TimeSearchResult r;
+      r.run = best[i];
+      all = trim_to_time(*engines[i], best[i].sim.running_time_s - residual / k,
+                         opt.tolerance_s / k, r, opt.search_step_m);
+      trial[i] = std::move(r.run);
+    }
+    if (all && std::abs(total_time(trial) - target) <= opt.tolerance_s) {
+      best = std::move(trial);
+      out.converged = true;
+      return;
+    }
+  }
   narrow(opt.tolerance_s);
   out.converged = best_err <= opt.tolerance_s;
 }

@@ -254,6 +254,7 @@ class PartSolver {
   // the engine's fine step (fine) before anything is trimmed, checked or returned.
   LambdaRun evaluate(const std::vector<double>& before, double after) {
     ++evaluations_;
+    report_progress(options_.progress, "price evaluation", evaluations_, 0);
     return engine_.run(prices(before, after), start_, engine_.search_step_m(kSearchStep_m));
   }
   LambdaRun fine(LambdaRun run) {
@@ -547,7 +548,9 @@ class PartSolver {
   }
 
   // Moves the onset of the program's last braking phase so the run ends at v_ms (bisection on
-  // the re-simulated end speed); the run is left as it is when no onset reaches it.
+  // the re-simulated end speed); the run is left as it is when no onset reaches it. Bisection,
+  // not the shared secant search (dp/lambda_bracket.hpp): an onset too late stops the run short
+  // of the end, where the end speed has no finite value to draw a secant through.
   void fix_end_speed(LambdaRun& run, double v_ms) {
     if (std::abs(run.sim.end_speed_ms - v_ms) <= 0.5 * kExactSpeed_ms) return;
     const physics::ControlProgram program = run.program;

@@ -127,14 +127,6 @@ bool PatternSearchOptions::IsValid(std::string* error) const {
     if (error) *error = "max_moves, max_per_train_moves: expected >= 0";
     return false;
   }
-  if (!(time_limit_s >= 0.0) || !std::isfinite(time_limit_s)) {
-    if (error) *error = "time_limit_s: expected a finite number >= 0";
-    return false;
-  }
-  if (threads < 0) {
-    if (error) *error = "threads: expected >= 0";
-    return false;
-  }
   return true;
 }
 
@@ -184,6 +176,10 @@ std::string PatternSearchResult::BriefReport() const {
   return buf;
 }
 
+std::string PatternSearchResult::FullReport() const {
+  return BriefReport() + "\n" + timetable.summary.FullReport();
+}
+
 PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const FleetProblem& problem,
                                      const energy::EnergyModelOptions& model,
                                      const PatternTrip& start,
@@ -204,7 +200,7 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   };
 
   // The whole-run limit: each stage ends by its share of it (0: none).
-  const double limit = options.time_limit_s;
+  const double limit = options.headways.time_limit_s;
   const auto stage_options = [&](double share) {
     HeadwayOptimiserOptions o = options.headways;
     if (limit > 0.0) o.time_limit_s = std::max(1e-6, share * limit - seconds_since(start_time));
@@ -218,7 +214,8 @@ PatternSearchResult optimise_pattern(const dp::SectionLibrary& library, const Fl
   HeadwayOptimiserResult first = optimise_headways(*start_model, problem, stage_options(1.0 / 3.0));
   out.headways_only = first.evaluation;
   const std::vector<int> departures = first.evaluation.departures_s;
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads =
+      options.headways.threads > 0 ? options.headways.threads : omp_get_max_threads();
   // The model prices candidate patterns at these departures: the incremental models in one
   // balance, a costly one screening on the annealing's coarse grid first.
   const std::unique_ptr<energy::TripPricer> pricer =

@@ -45,12 +45,10 @@ struct PatternSearchOptions {
   int max_moves = 200;              // accepted moves of the one-pattern stage at most
   int max_per_train_moves = 5000;   // accepted moves of the per-train stage at most
   bool per_train_patterns = false;  // power-flow and sections models only
-  // Of the whole search, every stage and the final evaluations included; 0: none. The first
-  // headway search may take a third of it and the pattern moves until two thirds, the headways
-  // for the pattern found (and the per-train stage) the rest; the headway stages' own
-  // headways.time_limit_s is then ignored.
-  double time_limit_s = 0.0;
-  int threads = 0;  // pricing per-train moves; 0: OpenMP's default
+  // headways.time_limit_s is the limit of the whole search, every stage and the final
+  // evaluations included (0: none): the first headway search may take a third of it and the
+  // pattern moves until two thirds, the headways for the pattern found (and the per-train
+  // stage) the rest. headways.threads also prices the per-train moves (0: OpenMP's default).
   std::function<void(const PatternProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
@@ -74,7 +72,12 @@ struct PatternSearchResult {
   bool time_limit_reached = false;
   bool move_limit_reached = false;
   double wall_s = 0.0;
+  // How the whole search ended: its final headway search's termination, settled with the
+  // pattern stages' limits (a stage stopped by the time or move limit is never CONVERGENCE).
+  Termination termination() const { return timetable.summary.termination; }
   std::string BriefReport() const;
+  // The brief report, then the final headway search's full report (gap, bound, limits).
+  std::string FullReport() const;
 };
 
 // The regenerated energy a fleet used: for the network model the energy that entered the line

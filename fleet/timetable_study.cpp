@@ -123,8 +123,6 @@ StudyOptimisation TimetableStudy::optimise(const StudyOptimiseOptions& options) 
     PatternSearchOptions po;
     po.headways = options.headways;
     po.per_train_patterns = options.per_train_patterns;
-    po.time_limit_s = options.headways.time_limit_s;
-    po.threads = options.headways.threads;
     po.progress = options.pattern_progress;
     PatternSearchResult r = optimise_pattern(*library_, problem_, model_options_, pattern_, po);
     if (!r.per_train.empty()) {

@@ -15,7 +15,7 @@
 #include "energy/power_flow_balance.hpp"
 #include "fleet/fleet_problem.hpp"
 #include "output/gnuplot.hpp"
-#include "output/timetable_csv.hpp"
+#include "output/timetable_csv_writer.hpp"
 #include "physics/trip.hpp"
 #include "power/load_flow.hpp"
 #include "power/network_evaluation.hpp"
@@ -37,7 +37,7 @@ struct FleetTimetable {
   }
 };
 
-// The timetable CSV (output/timetable_csv.hpp) of every train's stops.
+// The timetable CSV (output/timetable_csv_writer.hpp) of every train's stops.
 void write_timetable_csv(std::ostream& out, const FleetTimetable& timetable);
 // Writes the workbook to file (a temporary the caller renames): sheet "timetable" with the
 // rows of the CSV, numbers as numbers, header frozen.

@@ -4,7 +4,7 @@
 
 #include "data/input_error.hpp"
 #include "data/route_builder.hpp"
-#include "data/timetable_csv.hpp"
+#include "data/timetable_csv_reader.hpp"
 #include "data/train_io.hpp"
 
 namespace ecorail::recovery {

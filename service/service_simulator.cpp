@@ -130,6 +130,10 @@ std::string ServiceSummary::BriefReport() const {
   return buf;
 }
 
+std::string ServiceSummary::FullReport() const {
+  return "termination: " + std::string(dp::termination_name(termination)) + "\n" + BriefReport();
+}
+
 physics::Trip run_follower(const dp::SectionLibrary& library, const ServicePlan& plan,
                            const physics::Trip& leader, double departure_s,
                            const ServiceOptions& options, double b, int train,
@@ -157,6 +161,7 @@ ServiceResult simulate_service(const dp::SectionLibrary& library, const ServiceP
     const physics::Trip planned = plan.trip.shifted(departures_s[k]);
     if (k == 0) {
       out.trips.push_back(planned);
+      dp::report_progress(options.progress, "service", 1, sm.trains);
       continue;
     }
     const physics::Trip& leader = out.trips[k - 1];
@@ -179,7 +184,10 @@ ServiceResult simulate_service(const dp::SectionLibrary& library, const ServiceP
     const physics::Trip& actual = out.trips.back();
     for (std::size_t i = 1; i <= library.size(); ++i)
       sm.max_late_s = std::max(sm.max_late_s, actual.stop(i).arrival_s - planned.stop(i).arrival_s);
+    dp::report_progress(options.progress, "service", static_cast<int>(k) + 1, sm.trains);
   }
+  sm.termination = sm.cap_exceeded || sm.min_gap_m < 0.0 ? dp::Termination::FAILURE
+                                                         : dp::Termination::CONVERGENCE;
   return out;
 }
 

@@ -22,7 +22,9 @@
 
 #include "dp/capped_section.hpp"
 #include "dp/journey.hpp"
+#include "dp/progress_callback.hpp"
 #include "dp/section_library.hpp"
+#include "dp/termination.hpp"
 #include "physics/trip.hpp"
 #include "service/separation.hpp"
 
@@ -68,6 +70,9 @@ struct ServiceOptions {
   // supervisor) only when that could bring its arrival forward by more than this (s) against
   // waiting at the stop: the DP costs seconds a section.
   double redrive_gain_s = 0.05;
+  // Called after each train ("service", trains done, trains): a long service shows its
+  // progress, and a caller may stop it by throwing from here.
+  dp::ProgressFn progress;
   bool IsValid(std::string* error) const;
 };
 
@@ -106,7 +111,12 @@ struct ServiceSummary {
   double min_margin_at_s = 0.0, min_margin_at_m = 0.0;
   bool cap_exceeded = false;  // a final run above the cap anywhere (never expected)
   double max_late_s = 0.0;    // latest arrival at a stop after the plan
+  // CONVERGENCE when every final run keeps the cap and never closes on the train ahead
+  // (min_gap_m >= 0); FAILURE otherwise, which no result may pass for a timetable.
+  dp::Termination termination = dp::Termination::FAILURE;
   std::string BriefReport() const;
+  // The termination, then the brief report.
+  std::string FullReport() const;
 };
 
 struct ServiceResult {

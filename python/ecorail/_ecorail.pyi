@@ -174,7 +174,7 @@ def frontier(line: Line, train: Train, *, from_: str, to: str, tmin_s: float = 0
              progress: Progress = None) -> Frontier: ...
 def journey(line: Line, train: Train, journey: PathLike, *, ds_m: float = 5.0,
             dv_kmh: float = 0.2, objective: str = "traction", cruise: str = "hold",
-            threads: int = 0) -> Run: ...
+            threads: int = 0, progress: Progress = None) -> Run: ...
 def policy_table(line: Line, train: Train, *, from_: str, to: str, time_s: float,
                  ladder_s: Sequence[float] = (), ds_m: float = 5.0, dv_kmh: float = 0.2,
                  objective: str = "traction", cruise: str = "hold", threads: int = 0,
@@ -269,8 +269,8 @@ class timetable:  # submodule ecorail.timetable
                        headways_s: Optional[Sequence[int]] = None, trains: int = 100,
                        span_s: int = 63900, headway_s: Range = (120, 660),
                        train_length_m: float = 0.0, safety_margin_m: float = 0.0,
-                       braking_m_s2: float = 0.0,
-                       follower: str = "reoptimise") -> "timetable.SeparationResult": ...
+                       braking_m_s2: float = 0.0, follower: str = "reoptimise",
+                       progress: Progress = None) -> "timetable.SeparationResult": ...
 
     class SeparationResult:
         def to_dict(self) -> Dict[str, Any]: ...

@@ -320,7 +320,7 @@ PyFrontier frontier_py(const PyLine& line, const PyTrain& train, const std::stri
 
 py::object journey_py(const PyLine& line, const PyTrain& train, const py::object& journey_path,
                       double ds_m, double dv_kmh, const std::string& objective,
-                      const std::string& cruise, int threads) {
+                      const std::string& cruise, int threads, const py::object& progress) {
   const std::string path = py::str(py::module_::import("os").attr("fspath")(journey_path));
   const data::TtobenchJourney journey =
       data::journey_from_ttobench(data::read_text_file(path), path);
@@ -328,6 +328,9 @@ py::object journey_py(const PyLine& line, const PyTrain& train, const py::object
   const EngineArgs engine{ds_m, dv_kmh, objective, cruise, threads};
   options.engine = engine_options(engine, train);
   require_valid(options);
+  // Ctrl-C (and the user's progress callable) is seen after each price evaluation.
+  Interruptible guard(progress);
+  options.progress = guard.callback();
   if (line.line.stations.size() < 2) {
     throw data::InputError(line.source, 0, "stops", "at least two stops");
   }
@@ -335,8 +338,9 @@ py::object journey_py(const PyLine& line, const PyTrain& train, const py::object
                                                  line.line.stations.back().name, train.train);
   dp::TimingJourneySolution sol;
   try {
-    py::gil_scoped_release release;
-    sol = dp::solve_timing_journey(train.train, track, journey.points, options, journey.id);
+    sol = guard.run([&] {
+      return dp::solve_timing_journey(train.train, track, journey.points, options, journey.id);
+    });
   } catch (const dp::WindowInfeasibleError& e) {
     throw data::InputError(path, 0, "timing points.values[" + std::to_string(e.point()) + "]",
                            std::string("a window a run can meet: ") + e.what());
@@ -528,9 +532,12 @@ void bind_solve(py::module_& m) {
   m.def("journey", &journey_py, py::arg("line"), py::arg("train"), py::arg("journey"),
         py::kw_only(), py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
         py::arg("objective") = "traction", py::arg("cruise") = "hold", py::arg("threads") = 0,
+        py::arg("progress") = py::none(),
         (std::string("A TTOBench journey with timing points (path to its JSON) on line's track, "
                      "as `ecorail solve --journey`: least energy subject to every time and speed "
-                     "window. Windows no run can meet raise ValueError naming the window. ") +
+                     "window. Windows no run can meet raise ValueError naming the window. "
+                     "progress(stage, done, total) is called after each price evaluation (Ctrl-C "
+                     "stops the solve there). ") +
          kEngineDoc)
             .c_str());
 }

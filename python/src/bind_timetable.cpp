@@ -347,8 +347,8 @@ struct PySeparation {
 
 PySeparation separation_py(FleetState& state, const FleetArgs& a, const py::object& departures_s,
                            const py::object& headways_s, double train_length_m,
-                           double safety_margin_m, double braking_m_s2,
-                           const std::string& follower) {
+                           double safety_margin_m, double braking_m_s2, const std::string& follower,
+                           const py::object& progress) {
   const fleet::FleetProblem problem = fleet_problem(a);
   const std::vector<int> departures = given_departures(problem, departures_s, headways_s);
   service::ServiceOptions o;
@@ -359,10 +359,11 @@ PySeparation separation_py(FleetState& state, const FleetArgs& a, const py::obje
   if (!mode) bad_argument("follower", "'reoptimise', 'supervise' or 'wait'", "'" + follower + "'");
   o.mode = *mode;
   require_valid(o);
+  // Ctrl-C (and the user's progress callable) is seen after each train.
+  Interruptible guard(progress);
+  o.progress = guard.callback();
   PySeparation out;
-  {
-    // The service simulator has no progress callback: Ctrl-C is seen when it returns.
-    py::gil_scoped_release release;
+  guard.run([&] {
     std::lock_guard<std::mutex> lock(state.mutex);
     const fleet::TimetableStudy& s = study_for(state, problem);
     const fleet::FleetPattern& pattern = s.pattern().pattern;
@@ -372,7 +373,7 @@ PySeparation separation_py(FleetState& state, const FleetArgs& a, const py::obje
         std::vector<double>(departures.begin(), departures.end()), o);
     out.report = output::separation_json(r, o);
     out.summary = r.summary;
-  }
+  });
   if (out.summary.cap_exceeded) {
     raise_solve_error("a simulated train exceeds the separation cap: " + out.summary.BriefReport(),
                       py::cast(out));
@@ -623,22 +624,24 @@ void bind_timetable(py::module_& m) {
       "separation",
       [](const PyFleetLine& f, const py::object& departures_s, const py::object& headways_s,
          int trains, int span_s, Range headway_s, double train_length_m, double safety_margin_m,
-         double braking_m_s2, const std::string& follower) {
+         double braking_m_s2, const std::string& follower, const py::object& progress) {
         FleetArgs a = with_problem(f, trains, span_s, headway_s, f.args.dwell_range_s, {},
                                    f.args.peak_headway_s, f.args.offpeak_headway_s);
         return separation_py(*f.state, a, departures_s, headways_s, train_length_m, safety_margin_m,
-                             braking_m_s2, follower);
+                             braking_m_s2, follower, progress);
       },
       py::kw_only(), py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none(),
       py::arg("trains") = 100, py::arg("span_s") = 63900, py::arg("headway_s") = Range{120, 660},
       py::arg("train_length_m") = 0.0, py::arg("safety_margin_m") = 0.0,
       py::arg("braking_m_s2") = 0.0, py::arg("follower") = "reoptimise",
+      py::arg("progress") = py::none(),
       "Every train of the timetable run together with safe separation v <= sqrt(2 L b), as "
       "`ecorail timetable evaluate --separation`: L the distance to the train ahead's tail "
       "less safety_margin_m (train_length_m, m), b = braking_m_s2 (0: the train's maximum "
       "braking force at 10 km/h over its mass); a follower held up where waiting would "
       "make it late is driven by follower: 'reoptimise' (energy-optimal under the cap), "
-      "'supervise' (its planned control, braked) or 'wait'. to_dict() is the energy "
+      "'supervise' (its planned control, braked) or 'wait'. progress(stage, done, total) is "
+      "called after each train (Ctrl-C stops the run there). to_dict() is the energy "
       "document's \"separation\" block.");
 
   const std::string evaluate_doc =

@@ -10,6 +10,7 @@
 #include "dp/time_target.hpp"
 #include "dp/timing_journey.hpp"
 #include "physics/units.hpp"
+#include "timing_tracks.hpp"
 
 namespace ecorail::dp {
 namespace {
@@ -18,25 +19,11 @@ constexpr double kOpen = std::numeric_limits<double>::infinity();
 
 // A 3 km track, level but for a 6 per mille rise in its middle, limit 80 km/h.
 physics::Route test_track() {
-  std::vector<physics::RouteSegment> segs(3);
-  const double ends[] = {1200.0, 1800.0, 3000.0};
-  double start = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    segs[i].start_m = start;
-    segs[i].end_m = ends[i];
-    segs[i].gradient_permille = i == 1 ? 6.0 : 0.0;
-    segs[i].speed_limit_ms = units::kmh_to_ms(80.0);
-    start = ends[i];
-  }
-  return physics::Route(segs, 0.0, 1, "T0", "T1");
+  return timing_test::rise_track(1200.0, 1800.0, 3000.0, 6.0, "T0", "T1");
 }
 
 TimingJourneyOptions coarse() {
-  TimingJourneyOptions o;
-  o.engine.grid.ds_m = 10.0;
-  o.engine.grid.dv_kmh = 0.5;
-  o.engine.grid.substep_m = 5.0;
-  return o;
+  return timing_test::coarse_timing();
 }
 
 TimingWindow stop_at(double s, double earliest, double latest) {

@@ -17,6 +17,7 @@
 #include "dp/time_target.hpp"
 #include "dp/timing_journey.hpp"
 #include "physics/units.hpp"
+#include "timing_tracks.hpp"
 
 namespace ecorail::dp {
 namespace {
@@ -28,25 +29,11 @@ constexpr double kExactSpeed_ms = 0.01 / 3.6;
 
 // A 2 km track: level, a 5 per mille rise from 800 m to 1300 m, limit 80 km/h.
 physics::Route short_track() {
-  std::vector<physics::RouteSegment> segs(3);
-  const double ends[] = {800.0, 1300.0, kLength_m};
-  double start = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    segs[i].start_m = start;
-    segs[i].end_m = ends[i];
-    segs[i].gradient_permille = i == 1 ? 5.0 : 0.0;
-    segs[i].speed_limit_ms = units::kmh_to_ms(80.0);
-    start = ends[i];
-  }
-  return physics::Route(segs, 0.0, 1, "X0", "X1");
+  return timing_test::rise_track(800.0, 1300.0, kLength_m, 5.0, "X0", "X1");
 }
 
 TimingJourneyOptions coarse() {
-  TimingJourneyOptions o;
-  o.engine.grid.ds_m = 10.0;
-  o.engine.grid.dv_kmh = 0.5;
-  o.engine.grid.substep_m = 5.0;
-  return o;
+  return timing_test::coarse_timing();
 }
 
 // Time and speed where a run passes s_m (linear between trace points; NaN if it never does).

@@ -93,10 +93,10 @@ TEST(PerTrainPatterns, NeverWorseFeasibleDeterministicAndLocallyOptimal) {
   o.headways.moves_per_run = 3000;
   o.deltas_s = {2.0, 1.0};
   o.per_train_patterns = true;
-  o.threads = 1;
+  o.headways.threads = 1;
   const auto& lib = testing::small_library();
   const PatternSearchResult r = optimise_pattern(lib, problem, model, testing::small_pattern(), o);
-  o.threads = 2;
+  o.headways.threads = 2;
   const PatternSearchResult r2 = optimise_pattern(lib, problem, model, testing::small_pattern(), o);
   ASSERT_FALSE(r.time_limit_reached);
   ASSERT_EQ(r.per_train.size(), static_cast<std::size_t>(problem.trains));

@@ -74,19 +74,23 @@ TEST(PatternSearchTimeLimit, WholeRunKeepsTheLimit) {
   o.per_train_patterns = true;
   const auto& lib = testing::small_library();
   const PatternTrip& start = testing::small_pattern();
-  o.time_limit_s = 1e-3;
+  o.headways.time_limit_s = 1e-3;
   auto t0 = SearchClock::now();
   optimise_pattern(lib, problem, model, start, o);
   const double fixed = seconds_since(t0);
-  o.time_limit_s = 3.0;
+  o.headways.time_limit_s = 3.0;
   t0 = SearchClock::now();
   const PatternSearchResult r = optimise_pattern(lib, problem, model, start, o);
   const double wall = seconds_since(t0);
   RecordProperty("wall_s", std::to_string(wall));
   RecordProperty("fixed_s", std::to_string(fixed));
-  EXPECT_LE(wall, o.time_limit_s + fixed + 1.0) << "fixed costs " << fixed << " s";
+  EXPECT_LE(wall, o.headways.time_limit_s + fixed + 1.0) << "fixed costs " << fixed << " s";
   EXPECT_NE(r.timetable.summary.termination, Termination::CONVERGENCE);
   EXPECT_EQ(departures_problem(problem, r.timetable.evaluation.departures_s), "");
+  // The search's own summary says the same, and its full report carries the headway search's.
+  EXPECT_EQ(r.termination(), r.timetable.summary.termination);
+  EXPECT_NE(r.FullReport().find(r.BriefReport()), std::string::npos);
+  EXPECT_NE(r.FullReport().find(r.timetable.summary.FullReport()), std::string::npos);
 }
 
 }  // namespace

@@ -184,7 +184,7 @@ TEST(NetworkPatternSearch, NeverWorseThanHeadwaysAloneAndKeepsTheTrip) {
   o.headways = cheap_search();
   o.deltas_s = {2.0};
   o.max_moves = 2;
-  o.threads = 2;
+  o.headways.threads = 2;
   const PatternSearchResult r = optimise_pattern(small_library(), p, model, small_pattern(), o);
   const double after = r.timetable.evaluation.total.substation_J();
   EXPECT_LE(after, r.headways_only.total.substation_J() + 1e-6);

@@ -143,6 +143,21 @@ def test_peak_windows_match_cli(reference, run_cli):
     assert s.min_distance_margin_m == cli["separation"]["min_distance_margin_m"]
     with pytest.raises(ValueError, match="follower"):
         fleet.separation(trains=3, span_s=300, follower="fast")
+    # Progress after each train; a progress callable that raises stops the run there, and the
+    # Fleet answers as before afterwards.
+    calls = []
+    again = fleet.separation(trains=3, span_s=300, follower="supervise",
+                             progress=lambda stage, done, total: calls.append((stage, done, total)))
+    assert calls == [("service", 1, 3), ("service", 2, 3), ("service", 3, 3)]
+    assert again.to_dict() == s.to_dict()
+
+    def stop(stage, done, total):
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        fleet.separation(trains=3, span_s=300, follower="supervise", progress=stop)
+    assert fleet.separation(trains=3, span_s=300, follower="supervise").to_dict() == s.to_dict()
 
 
 def test_optimise_gap_matches_cli(reference, run_cli):

@@ -126,6 +126,20 @@ def test_timing_journey_matches_cli(ttobench_files, run_cli, tmp_path, monkeypat
     bad = write_journey("bad.json", "[[0,0,0,0,0],[1500,0,20,null,null],[3000,150,190,0,0]]")
     with pytest.raises(ValueError, match=r"timing points\.values\[1\]"):
         ecorail.journey(line, train, bad, ds_m=5, dv_kmh=0.5)
+    # Progress after each price evaluation: the same run with a callable; one that raises stops
+    # the solve there and the interpreter goes on.
+    calls = []
+    again = ecorail.journey(line, train, journey, ds_m=5, dv_kmh=0.5,
+                            progress=lambda stage, done, total: calls.append((stage, done)))
+    assert without_wall_times(again.to_dict()) == without_wall_times(cli)
+    assert calls and calls[0] == ("price evaluation", 1)
+
+    def stop(stage, done, total):
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        ecorail.journey(line, train, journey, ds_m=5, dv_kmh=0.5, progress=stop)
 
 
 def test_policy_table_bytes_match_cli(reference, cli, tmp_path):

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "output/timetable_csv.hpp"
+#include "output/timetable_csv_writer.hpp"
 #include "recovery/monte_carlo_run.hpp"
 #include "recovery/plan_source.hpp"
 

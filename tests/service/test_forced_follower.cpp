@@ -251,3 +251,23 @@ TEST(ForcedFollower, ReoptimisedRunIsWithinHalfAPercentOfBruteForce) {
 
 }  // namespace
 }  // namespace ecorail::service
+
+namespace ecorail::service {
+namespace {
+
+// A service of three trains of the small pattern, 70 s apart: the followers close up on their
+// leaders, are driven under the cap, and every final run keeps it. The summary says so with
+// CONVERGENCE (never closer than the braking distance: min_gap_m >= 0), its full report with it.
+TEST(ServiceSummary, ConvergesOnlyWhenEveryRunKeepsTheCap) {
+  ServiceOptions o;
+  const ServiceResult r = simulate_service(library(), plan(), {0.0, 70.0, 140.0}, o);
+  ASSERT_EQ(r.trips.size(), 3u);
+  EXPECT_FALSE(r.summary.cap_exceeded);
+  EXPECT_GE(r.summary.min_gap_m, 0.0);
+  EXPECT_EQ(r.summary.termination, dp::Termination::CONVERGENCE);
+  EXPECT_EQ(r.summary.FullReport().rfind("termination: CONVERGENCE\n", 0), 0u);
+  EXPECT_NE(r.summary.FullReport().find(r.summary.BriefReport()), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ecorail::service

@@ -3,7 +3,7 @@
 // station), arrival_s and departure_s (clock seconds), arrival and departure (HH:MM:SS) and
 // dwell_s. `ecorail timetable evaluate|optimise --csv` writes it from a fleet timetable
 // (output/fleet_outputs.hpp), `ecorail montecarlo --adjust --adjusted-csv` from a delay plan;
-// `ecorail delay|montecarlo --plan` read it back (data/timetable_csv.hpp).
+// `ecorail delay|montecarlo --plan` read it back (data/timetable_csv_reader.hpp).
 #pragma once
 
 #include <ostream>

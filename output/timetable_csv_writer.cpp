@@ -1,4 +1,4 @@
-#include "output/timetable_csv.hpp"
+#include "output/timetable_csv_writer.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "data/timetable_csv.hpp"
+#include "data/timetable_csv_reader.hpp"
 
 #include <cmath>
 #include <map>
