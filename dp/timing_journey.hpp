@@ -34,8 +34,9 @@ struct TimingJourneyOptions {
   double speed_tolerance_kmh = 0.1;
   // Price evaluations (sweep, extraction, re-simulation) allowed per part.
   int max_evaluations = 400;
-  // Called after each price evaluation of a part ("price evaluation", the part's count, 0): a
-  // long journey shows its progress, and a caller may stop it by throwing from here.
+  // Called after each price evaluation of a part ("price evaluation", the part's count, 0; a part
+  // without binding windows searches one price: "lambda evaluation"): a long journey shows its
+  // progress, and a caller may stop it by throwing from here.
   ProgressFn progress;
   bool IsValid(std::string* error) const;
 };

@@ -351,6 +351,7 @@ class PartSolver {
     bool ok = false;
     if (!end_.moving) {
       TimeSearchOptions search;
+      search.progress = options_.progress;
       const TimeSearchResult plain = solve_for_time(engine_, target_s_, search, start_);
       evaluations_ += plain.iterations;
       run = plain.run;
@@ -616,7 +617,9 @@ class PartSolver {
     if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return;
     TimeSearchResult rest;
     try {
-      rest = solve_for_time(engine_, target_s_ - at.t_s, TimeSearchOptions{}, {s_k, at.v_ms});
+      TimeSearchOptions search;
+      search.progress = options_.progress;
+      rest = solve_for_time(engine_, target_s_ - at.t_s, search, {s_k, at.v_ms});
     } catch (const TimeRequestError&) {
       return;  // the time left is outside what the rest can run
     }

@@ -1,9 +1,9 @@
 // Where the delay studies (`ecorail delay`, `ecorail montecarlo`, ecorail.delay.recover and
 // ecorail.montecarlo) get their plan and its section library: a timetable CSV read and checked
-// against the line (data/timetable_csv_reader.hpp; a bad file fails before any engine is built), or the
-// 2.1 reference plan made on the library of the whole line. The library of a plan's stations
-// is keyed for the frontier cache by line, train and curve formula, the same key for every
-// delay study, so they share cached frontiers.
+// against the line (data/timetable_csv_reader.hpp; a bad file fails before any engine is built), or
+// the 2.1 reference plan made on the library of the whole line. The library of a plan's stations is
+// keyed for the frontier cache by line, train and curve formula, the same key for every delay
+// study, so they share cached frontiers.
 #pragma once
 
 #include <memory>

@@ -195,11 +195,12 @@ struct PyMonteCarlo {
 
 PyMonteCarlo montecarlo_py(const PyLine& line, const PyTrain& train, const py::object& plan,
                            long long days, std::int64_t seed, const std::string& recovery_name,
-                           const std::string& followers, const std::string& tail, double early_s, double run_early_s,
-                           double min_dwell_s, double takeover_s, double punctual_s,
-                           double separation_s, double knot_step_s, double step_s,
-                           double frontier_span_s, double ds_m, double dv_kmh, int threads,
-                           bool cache, const py::object& cache_dir, const py::object& progress) {
+                           const std::string& followers, const std::string& tail, double early_s,
+                           double run_early_s, double min_dwell_s, double takeover_s,
+                           double punctual_s, double separation_s, double knot_step_s,
+                           double step_s, double frontier_span_s, double ds_m, double dv_kmh,
+                           int threads, bool cache, const py::object& cache_dir,
+                           const py::object& progress) {
   check_count("days", days, 1, 100000000, "a number of days from 1 to 1e8");
   check_count("seed", seed, 0, INT64_MAX, "a seed >= 0");
   recovery::MonteCarloOptions o;
@@ -375,12 +376,11 @@ void bind_delay(py::module_& m) {
   m.def("montecarlo", &montecarlo_py, py::arg("line"), py::arg("train"), py::kw_only(),
         py::arg("plan") = py::none(), py::arg("days") = 100, py::arg("seed") = 1,
         py::arg("recovery") = "exact", py::arg("followers") = "driven",
-        py::arg("tail") = "exponential:30",
-        py::arg("early_s") = 10.0, py::arg("run_early_s") = 0.0, py::arg("min_dwell_s") = 30.0,
-        py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0, py::arg("separation_s") = -1.0,
-        py::arg("knot_step_s") = 1.0, py::arg("step_s") = 0.1, py::arg("frontier_span_s") = 60.0,
-        py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2, py::arg("threads") = 0,
-        py::arg("cache") = true, py::arg("cache_dir") = py::none(),
+        py::arg("tail") = "exponential:30", py::arg("early_s") = 10.0, py::arg("run_early_s") = 0.0,
+        py::arg("min_dwell_s") = 30.0, py::arg("takeover_s") = 120.0, py::arg("punctual_s") = 10.0,
+        py::arg("separation_s") = -1.0, py::arg("knot_step_s") = 1.0, py::arg("step_s") = 0.1,
+        py::arg("frontier_span_s") = 60.0, py::arg("ds_m") = 5.0, py::arg("dv_kmh") = 0.2,
+        py::arg("threads") = 0, py::arg("cache") = true, py::arg("cache_dir") = py::none(),
         py::arg("progress") = py::none(),
         "Whole service days of the plan under random delays, as `ecorail montecarlo`: plan "
         "None (the 2.1 reference plan), a timetable CSV path or an ecorail.delay.Plan; days from "

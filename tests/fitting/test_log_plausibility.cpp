@@ -6,7 +6,6 @@
 // ecorail's own table carries the curve radius that calibrate reads.
 #include <gtest/gtest.h>
 
-
 #include "data/input_error.hpp"
 #include "fitting/calibration.hpp"
 #include "fitting/log_plausibility.hpp"
