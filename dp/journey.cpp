@@ -83,8 +83,8 @@ struct PricePrediction {
 
 // The price is bracketed and narrowed on runs re-simulated at opt.search_step_m (coarse, as a
 // section's search); the best price's runs are then made fine before the trim, which alone are
-// returned.
-void optimal_split(const std::vector<const SectionEngine*>& engines,
+// returned. Returns whether their total running time meets the target to the tolerance.
+bool optimal_split(const std::vector<const SectionEngine*>& engines,
                    const std::vector<std::size_t>& source, double target,
                    const TimeSearchOptions& opt, const StartState& start,
                    const PricePrediction& predicted, JourneySolution& out,
@@ -136,10 +136,7 @@ void optimal_split(const std::vector<const SectionEngine*>& engines,
   step_m = 0.0;  // from here on every run is fine
   // Close the rest on one section, the longest-running first (it has the most room to move);
   // if no section can, narrow lambda to the fine tolerance instead.
-  if (best_err <= opt.tolerance_s) {
-    out.converged = true;
-    return;
-  }
+  if (best_err <= opt.tolerance_s) return true;
   const double residual = total_time(best) - target;
   std::vector<std::size_t> order(best.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -152,8 +149,7 @@ void optimal_split(const std::vector<const SectionEngine*>& engines,
     if (trim_to_time(*engines[i], best[i].sim.running_time_s - residual, opt.tolerance_s, r,
                      opt.search_step_m)) {
       best[i] = std::move(r.run);
-      out.converged = true;
-      return;
+      return true;
     }
   }
   // No one section can take the residual (equal sections jump in lambda together, so the
@@ -180,12 +176,11 @@ void optimal_split(const std::vector<const SectionEngine*>& engines,
     }
     if (all && std::abs(total_time(trial) - target) <= opt.tolerance_s) {
       best = std::move(trial);
-      out.converged = true;
-      return;
+      return true;
     }
   }
   narrow(opt.tolerance_s);
-  out.converged = best_err <= opt.tolerance_s;
+  return best_err <= opt.tolerance_s;
 }
 
 // The common price at which the sections' frontiers add up to the total running time, and the
@@ -220,9 +215,10 @@ PricePrediction price_from_frontiers(const SectionLibrary& library, std::size_t 
   return p;
 }
 
-// The journey's summary from its solution, under the names and units of a section's.
+// The journey's summary from its solution, under the names and units of a section's; met says
+// whether the search met the total time and every section its stop with a closed energy balance.
 void summarise_journey(const std::vector<physics::Route>& routes, double min_total_s,
-                       const JourneyOptions& options, JourneySolution& sol) {
+                       const JourneyOptions& options, bool met, JourneySolution& sol) {
   JourneySummary& s = sol.summary;
   s.from = routes.front().from_name();
   s.to = routes.back().to_name();
@@ -254,7 +250,7 @@ void summarise_journey(const std::vector<physics::Route>& routes, double min_tot
         std::max(s.max_overspeed_kmh, units::ms_to_kmh(std::max(0.0, sim.max_overspeed_ms)));
     arrives = arrives && run_arrives(sim);
   }
-  s.termination = termination_of(arrives, sol.converged);
+  s.termination = termination_of(arrives, met);
   s.warnings = sol.warnings;
 }
 
@@ -392,23 +388,25 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
 
   const auto t1 = Clock::now();
   std::vector<LambdaRun> runs;
+  bool time_met = false;  // the search met the total running time
   if (options.split == Split::Optimal) {
     const PricePrediction predicted =
         price_from_frontiers(library, first, last, total_time_s, options);
-    optimal_split(engines, source, total_time_s, options.search, options.start, predicted, out,
-                  runs);
-    if (!out.converged && engines.front()->searches_coarse(options.search.search_step_m)) {
+    time_met = optimal_split(engines, source, total_time_s, options.search, options.start,
+                             predicted, out, runs);
+    if (!time_met && engines.front()->searches_coarse(options.search.search_step_m)) {
       // As a section's search (solve_for_time): where the coarse runs' own decisions make their
       // times differ from the fine runs' (long, slow runs: A6 -> A8 in 1100 s with 30 s
       // dwells), the price is searched again on fine runs only.
       TimeSearchOptions fine = options.search;
       fine.search_step_m = 0.0;
       runs.clear();
-      optimal_split(engines, source, total_time_s, fine, options.start, predicted, out, runs);
+      time_met =
+          optimal_split(engines, source, total_time_s, fine, options.start, predicted, out, runs);
     }
   } else {
     out.lambda_J_per_s = NAN;
-    out.converged = true;
+    time_met = true;
     for (std::size_t i = 0; i < engines.size(); ++i) {
       const double share = total_time_s * remaining_m[i] / length;
       if (share < min_times[i]) {
@@ -420,7 +418,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
       TimeSearchResult r =
           solve_for_time(*engines[i], share, options.search, i == 0 ? options.start : StartState{});
       out.lambda_evaluations += r.iterations;
-      out.converged = out.converged && r.converged;
+      time_met = time_met && r.converged;
       runs.push_back(std::move(r.run));
     }
   }
@@ -474,11 +472,11 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
   }
   // Every section must come to rest at its stop: a journey with one that does not is never a
   // converged result.
-  const bool time_met = out.converged;
+  bool met = time_met;
   for (std::size_t i = 0; i < out.sections.size(); ++i) {
     const physics::SimulationResult& sim = out.sections[i].run.sim;
     if (!run_meets_targets(sim, 0.0)) {
-      out.converged = false;
+      met = false;
       char msg[200];
       std::snprintf(msg, sizeof msg, "section %s -> %s misses its stop by %.2f m",
                     routes[i].from_name().c_str(), routes[i].to_name().c_str(), sim.stop_error_m);
@@ -487,7 +485,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
     // The last check before a result: its energy balances (physics/energy_balance.hpp).
     const physics::EnergyBalance balance = physics::energy_balance(engines[i]->motion(), sim);
     if (!balance.closes()) {
-      out.converged = false;
+      met = false;
       out.warnings.push_back(
           format_text("section %s -> %s: energy does not balance by %.1f kJ (dissipation %.1f kJ)",
                       routes[i].from_name().c_str(), routes[i].to_name().c_str(),
@@ -499,7 +497,7 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
                            std::to_string(options.search.tolerance_s) + " s");
   }
   out.total_wall_s = seconds_since(t0);
-  summarise_journey(routes, min_total, options, out);
+  summarise_journey(routes, min_total, options, met, out);
   out.summary.streamed_tables = library.streams_tables();
   out.summary.tables_estimate_bytes = library.tables_estimate_bytes();
   return out;

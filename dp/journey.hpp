@@ -117,7 +117,6 @@ struct JourneySolution {
   double regen_J = 0.0;
   double net_J = 0.0;
   int lambda_evaluations = 0;
-  bool converged = false;
   // With a minimum regime: phases merged over all sections and the energy (by the objective)
   // before and after, against the unmerged optimum.
   int merged_regimes = 0;
@@ -127,6 +126,8 @@ struct JourneySolution {
   double total_wall_s = 0.0;
   std::vector<std::string> warnings;
   JourneySummary summary;
+  // The one verdict is summary.termination; this reads it.
+  bool converged() const { return summary.termination == Termination::CONVERGENCE; }
 };
 
 // Solves a journey over `routes` (consecutive sections) with `dwells_s[i]` after section i.

@@ -136,6 +136,14 @@ void refine_near_minimum(const SectionEngine& engine, const TimeSearchOptions& s
 const FrontierCurve& SectionLibrary::frontier(std::size_t i, FrontierStore* store) const {
   Slot& s = slot(i);
   std::call_once(s.frontier_once, [&] {
+    if (const std::size_t t = twin(i); t != i) {
+      // A twin's frontier is its twin's (same track, same engine table): computed once. The
+      // twin is an earlier section, which never waits on a later one.
+      s.frontier = frontier(t, store);
+      s.frontier_from_store = slot(t).frontier_from_store;
+      s.frontier_ready = true;
+      return;
+    }
     const std::string key = frontier_key(i);
     if (store != nullptr) {
       if (std::optional<Frontier> f = store->load(key)) {

@@ -72,7 +72,8 @@ class SectionLibrary {
 
   const SectionEngine& engine(std::size_t i) const;
   // The first section whose track equals section i's (physics::track_key; i itself when no
-  // earlier one does). Twins share one transition table, and a journey runs a twin's price once.
+  // earlier one does). Twins share one transition table and one frontier, and a journey runs a
+  // twin's price once.
   std::size_t twin(std::size_t i) const { return twins_.at(i); }
   const physics::SimulationResult& min_time_run(std::size_t i) const;
   double min_time_s(std::size_t i) const { return min_time_run(i).running_time_s; }

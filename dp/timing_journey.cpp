@@ -374,7 +374,6 @@ void fill_totals(const Journey& jy, bool all_met, bool all_arrive, const std::st
   }
   jr.target_time_s = 0.0;
   for (const auto& p : out.parts) jr.target_time_s += p.arrival_target_s - p.departure_s;
-  jr.converged = out.windows_met && all_met;
   jr.total_wall_s = seconds_since(t0);
   jr.warnings = out.summary.warnings;
 
@@ -390,7 +389,11 @@ void fill_totals(const Journey& jy, bool all_met, bool all_arrive, const std::st
   s.termination = !all_arrive       ? Termination::FAILURE
                   : out.windows_met ? Termination::CONVERGENCE
                                     : Termination::NO_CONVERGENCE;
-  jr.summary.termination = s.termination;
+  // The journey's verdict adds the parts' own searches: a window met by re-simulation after a
+  // part's search stopped short is not a converged journey.
+  jr.summary.termination = s.termination == Termination::CONVERGENCE && !all_met
+                               ? Termination::NO_CONVERGENCE
+                               : s.termination;
   s.running_time_s = jr.running_time_s;
   s.trip_time_s = out.windows.back().time_s - out.parts.front().departure_s;
   s.traction_energy_kJ = units::J_to_kJ(jr.traction_work_J);

@@ -30,7 +30,7 @@ PatternTrip optimal_split_pattern(const dp::SectionLibrary& library,
     throw std::invalid_argument("a pattern needs one dwell per intermediate stop");
   const double running = trip_time_s - std::accumulate(dwells_s.begin(), dwells_s.end(), 0.0);
   const dp::JourneySolution sol = dp::solve_journey(library, 0, n, dwells_s, running, options);
-  if (!sol.converged)
+  if (!sol.converged())
     throw std::runtime_error("the pattern's journey misses a stop or its running time");
   PatternTrip out;
   out.pattern.dwells_s = dwells_s;

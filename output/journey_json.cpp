@@ -65,7 +65,7 @@ nlohmann::json journey_json(const dp::JourneySolution& sol, const JourneyLabels&
                       {"sections", sections},
                       {"dwells", dwells},
                       {"regimes", all_regimes},
-                      {"converged", sol.converged},
+                      {"converged", sol.converged()},
                       {"termination", std::string(dp::termination_name(sol.summary.termination))},
                       {"warnings", sol.warnings},
                       {"grid", {{"ds_m", labels.ds_m}, {"dv_kmh", labels.dv_kmh}}},

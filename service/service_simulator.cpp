@@ -91,7 +91,7 @@ ServicePlan optimal_split_plan(const dp::SectionLibrary& library,
   for (double d : dwells_s) dwell_sum += d;
   const dp::JourneySolution sol =
       dp::solve_journey(library, 0, library.size(), dwells_s, trip_time_s - dwell_sum, options);
-  if (!sol.converged)
+  if (!sol.converged())
     throw std::runtime_error("the pattern's journey misses a stop or its running time");
   ServicePlan plan;
   plan.dwells_s = dwells_s;

@@ -32,7 +32,7 @@ TEST(Journey, A6ToA8OptimalSplitEqualisesMarginalsAndBeatsProportional) {
   const auto routes = routes_between(train, "A6", "A8");
   ASSERT_EQ(routes.size(), 2u);
   const dp::JourneySolution opt = dp::solve_journey(train, routes, {45.0}, 220.0, {});
-  EXPECT_TRUE(opt.converged);
+  EXPECT_TRUE(opt.converged());
   EXPECT_NEAR(opt.running_time_s, 220.0, 0.1);
   for (const auto& s : opt.sections) {
     EXPECT_LT(std::abs(s.run.sim.stop_error_m), 0.5);
@@ -99,7 +99,7 @@ TEST(Journey, FullLineOptimalSplitSavesSeveralPercent) {
   dp::JourneyOptions options;
   options.measure_marginals = false;
   const auto opt = dp::solve_journey(train, routes, dwells, 1726.0, options);
-  EXPECT_TRUE(opt.converged);
+  EXPECT_TRUE(opt.converged());
   EXPECT_NEAR(opt.running_time_s, 1726.0, 0.1);
   ASSERT_EQ(opt.sections.size(), 13u);
   for (const auto& s : opt.sections) EXPECT_LT(std::abs(s.run.sim.stop_error_m), 0.5);

@@ -90,13 +90,13 @@ TEST(Restart, JourneyRestartMatchesTheRestOfTheJourney) {
   JourneyOptions options;
   options.measure_marginals = false;
   const JourneySolution whole = solve_journey(library, 0, 2, {45.0}, 220.0, options);
-  ASSERT_TRUE(whole.converged);
+  ASSERT_TRUE(whole.converged());
   const Rest rest = rest_of(library.engine(0), whole.sections[0].run.sim, 500.0);
   JourneyOptions restart = options;
   restart.start = rest.start;
   const double remaining = rest.time_s + whole.sections[1].run.sim.running_time_s;
   const JourneySolution again = solve_journey(library, 0, 2, {45.0}, remaining, restart);
-  ASSERT_TRUE(again.converged);
+  ASSERT_TRUE(again.converged());
   const double expected =
       rest.energy_J + library.engine(1).energy_cost_J(whole.sections[1].run.sim);
   const double got = library.engine(0).energy_cost_J(again.sections[0].run.sim) +
@@ -131,8 +131,8 @@ TEST(JourneyOnLibrary, FrontiersStartThePriceSearchAndChangeNothingButItsCost) {
   const JourneySolution cold = solve_journey(library, 0, 3, {30.0, 30.0}, 340.0, options);
   library.build_frontiers(0, 3, nullptr);
   const JourneySolution warm = solve_journey(library, 0, 3, {30.0, 30.0}, 340.0, options);
-  ASSERT_TRUE(cold.converged);
-  ASSERT_TRUE(warm.converged);
+  ASSERT_TRUE(cold.converged());
+  ASSERT_TRUE(warm.converged());
   EXPECT_NEAR(warm.running_time_s, 340.0, 0.01);
   EXPECT_LT(warm.lambda_evaluations, cold.lambda_evaluations);
   EXPECT_NEAR(warm.traction_work_J, cold.traction_work_J, 1e-5 * cold.traction_work_J);
@@ -146,7 +146,7 @@ TEST(FreeDwells, GoToTheirMinimumAndNoOtherChoiceIsCheaper) {
   const std::vector<DwellRange> ranges{{30.0, 45.0}, {30.0, 45.0}};
   const double trip = 400.0;
   const JourneySolution free = solve_journey_free_dwells(library, 0, 3, ranges, trip, options);
-  ASSERT_TRUE(free.converged);
+  ASSERT_TRUE(free.converged());
   EXPECT_DOUBLE_EQ(free.sections[0].dwell_after_s, 30.0);
   EXPECT_DOUBLE_EQ(free.sections[1].dwell_after_s, 30.0);
   EXPECT_NEAR(free.running_time_s + 60.0, trip, 0.01);

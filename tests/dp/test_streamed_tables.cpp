@@ -9,17 +9,13 @@
 #include "data/train_io.hpp"
 #include "dp/journey.hpp"
 #include "dp/section_library.hpp"
+#include "tests/dp/coarse_library.hpp"
 
 namespace ecorail {
 namespace {
 
 dp::SectionLibraryOptions coarse(double budget_bytes) {
-  dp::SectionLibraryOptions o;
-  o.engine.grid.ds_m = 10.0;
-  o.engine.grid.dv_kmh = 0.5;
-  o.engine.grid.substep_m = 5.0;
-  o.memory_budget_bytes = budget_bytes;
-  return o;
+  return dp::test::coarse_library(10.0, budget_bytes);
 }
 
 TEST(StreamedTables, AJourneyIsBitForBitTheSameAndNoTableIsKept) {

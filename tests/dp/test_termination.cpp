@@ -104,7 +104,7 @@ TEST(Termination, JourneySummaryUsesTheSectionNamesAndUnits) {
   const JourneySolution cut = solve_journey(p.train, routes, {45.0}, 220.0, options);
   EXPECT_EQ(cut.summary.termination, Termination::NO_CONVERGENCE);
   EXPECT_FALSE(cut.summary.IsSolutionUsable());
-  EXPECT_FALSE(cut.converged);
+  EXPECT_FALSE(cut.converged());
 }
 
 TEST(Termination, FrontierSummaryCountsPointsThatMissTheirTime) {

@@ -12,17 +12,13 @@
 #include "dp/section_library.hpp"
 #include "dp/time_target.hpp"
 #include "physics/route.hpp"
+#include "tests/dp/coarse_library.hpp"
 
 namespace ecorail {
 namespace {
 
 dp::SectionLibraryOptions coarse(double budget_bytes) {
-  dp::SectionLibraryOptions o;
-  o.engine.grid.ds_m = 5.0;
-  o.engine.grid.dv_kmh = 0.5;
-  o.engine.grid.substep_m = 5.0;
-  o.memory_budget_bytes = budget_bytes;
-  return o;
+  return dp::test::coarse_library(5.0, budget_bytes);
 }
 
 physics::Route level(double length_m, double gradient_permille, int index) {
@@ -67,6 +63,28 @@ TEST(TwinSections, ShareOneTableAndRunBitForBitAsOwnTables) {
     EXPECT_EQ(a.sections[i].run.sim.running_time_s, b.sections[i].run.sim.running_time_s);
     EXPECT_EQ(a.sections[i].run.sim.energy.traction_work_J,
               b.sections[i].run.sim.energy.traction_work_J);
+  }
+}
+
+TEST(TwinSections, ShareOneFrontierEqualToTheirOwn) {
+  // A, B, A: the third section's frontier is the first's, computed once, and equal to the one a
+  // library holding only that track computes for itself.
+  const physics::Train train = data::default_train();
+  std::vector<physics::Route> routes;
+  for (int i = 0; i < 3; ++i) routes.push_back(level(400.0, i == 1 ? 5.0 : 0.0, i));
+  dp::SectionLibraryOptions options = coarse(0.0);
+  options.frontier_span_s = 8.0;
+  options.frontier_step_s = 2.0;
+  const dp::SectionLibrary shared(train, routes, options);
+  const dp::SectionLibrary alone(train, {routes[2]}, options);
+  shared.build_frontiers(0, 3, nullptr);
+  EXPECT_EQ(shared.frontier_computations(), 2);
+  const dp::FrontierCurve& twin = shared.frontier(2);
+  const dp::FrontierCurve& own = alone.frontier(0);
+  ASSERT_EQ(twin.frontier().points.size(), own.frontier().points.size());
+  for (std::size_t k = 0; k < own.frontier().points.size(); ++k) {
+    EXPECT_EQ(twin.frontier().points[k].running_time_s, own.frontier().points[k].running_time_s);
+    EXPECT_EQ(twin.frontier().points[k].cost_J, own.frontier().points[k].cost_J);
   }
 }
 
