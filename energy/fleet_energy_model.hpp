@@ -80,6 +80,9 @@ struct FleetLowerBound {
   // traction, which its load flow may trade for each other).
   double substation_J = kNone;
   std::string name;  // e.g. "pair bound"
+  // Headway sequences that maximise the bound's relaxation (one per multiplier tried; their sums
+  // miss the span): starts for a search (fleet/relaxed_start.hpp). Empty when the bound has none.
+  std::vector<std::vector<int>> maximiser_headways_s;
   bool exists() const { return used_regen_J == used_regen_J || substation_J == substation_J; }
 };
 

@@ -12,6 +12,7 @@
 #include "fleet/headway_dp.hpp"
 #include "fleet/headway_moves.hpp"
 #include "fleet/regime_start.hpp"
+#include "fleet/relaxed_start.hpp"
 #include "fleet/search_support.hpp"
 #include "fleet/windowed_dp.hpp"
 
@@ -221,7 +222,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   const energy::FleetLowerBound bound = model.lower_bound();
   const double bound_used = bound.used_regen_J;
 
-  // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp), the
+  // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp),
+  // without them the join of the bound relaxation's maximisers (relaxed_start.hpp), the
   // exact optimum of the two-train approximation (with peak windows: the windowed DP's, the same
   // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
@@ -239,6 +241,16 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     }
   }
   report("periodic regimes", 0.0, bound_used);
+  bool relaxed = false;  // a start from the relaxation was added
+  if (options.relaxed_start && !p.windowed()) {
+    const std::vector<int> h = relaxed_start_headways(bound.maximiser_headways_s, p);
+    if (!h.empty() && departures_problem(p, departures_from_headways(h)).empty()) {
+      starts.push_back(departures_from_headways(h));
+      start_temperature.push_back(options.reanneal_temperature);
+      method_starts += "the bound's relaxation, ";
+      relaxed = true;
+    }
+  }
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
   report("two-train approximation", 0.0, bound_used);
@@ -246,7 +258,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     starts.push_back(departures_from_headways(maximise_windowed(p, both_classes(pair)).headways_s));
   else
     starts.push_back(departures_from_headways(maximise_separable(domain_of(p), pair).headways_s));
-  starts.push_back(departures_from_headways(uniform_headways(p)));
+  // The uniform timetable: a start of no structure, left out when the relaxation gave one.
+  if (!relaxed) starts.push_back(departures_from_headways(uniform_headways(p)));
   start_temperature.resize(starts.size(), 1.0);
   double evaluate_s = 0.0, traction_J = NAN;  // traction: the same for every timetable
   std::size_t best_start = 0;

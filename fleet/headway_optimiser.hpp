@@ -5,6 +5,7 @@
 //     the separable DP (train ahead) or the chain DP (either neighbour), headway_dp.hpp, and
 //     with peak classes by the windowed DPs (windowed_dp.hpp).
 //   Any model with an incremental balance (power-flow, sections, network): starts from the
+//     maximisers of the model's bound relaxation joined to the span (relaxed_start.hpp), the
 //     exact optimum of the two-train approximation (every headway valued by what two trains that
 //     far apart alone are worth) and from the uniform timetable, runs simulated annealing from
 //     each start and restart on the coarser grid of anneal_step_s (OpenMP over the runs; random
@@ -63,6 +64,9 @@ struct HeadwayOptimiserOptions {
   double reanneal_temperature = 0.1;
   // With peak windows, a start from the trip's periodic regimes (regime_start.hpp).
   bool regime_start = true;
+  // Without peak windows, a start joined from the maximisers of the model's bound relaxation
+  // (relaxed_start.hpp), when its bound has them.
+  bool relaxed_start = true;
   // With peak windows the annealing also shifts blocks of consecutive trains (classes kept).
   bool block_moves = true;
   std::function<void(const OptimiserProgress&)> progress;
