@@ -55,6 +55,12 @@ struct FollowerRecovery {
   std::function<std::vector<std::vector<const physics::SimulationResult*>>(std::size_t first)> runs;
   std::vector<double> min_dwell_s;
   bool lateness_first = false;
+  // Drop the states that a lower bound shows cannot be the optimum: one whole path, timed
+  // pessimistically, bounds the least lateness (and, energy first, the least final lateness)
+  // from above, and a state whose best possible lateness (or final lateness) already exceeds
+  // it by more than the ties of the objective is never chosen. The same path is chosen as
+  // without (false: every Pareto state kept).
+  bool prune = true;
 };
 
 // One section of a held-up follower's path: the run it drives, when it leaves (after any wait
