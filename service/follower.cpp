@@ -27,6 +27,13 @@ double leader_clear_at(const physics::Trip& leader, double position_m) {
   return leader.time_at(std::max(0.0, position_m));
 }
 
+// The same, searching the leader's samples from *hint (physics::Trip::time_at).
+double leader_clear_at(const physics::Trip& leader, double position_m, std::size_t* hint) {
+  const double length = leader.length_m();
+  if (position_m >= length) return leader.arrival_s();
+  return leader.time_at(std::max(0.0, position_m), hint);
+}
+
 // The least wait before leaving at start_s for which `run` (a section's run from rest, its own
 // clock from 0) keeps gap >= v^2 / 2b behind the leader at every trace point and at the start.
 double clearance_wait_s(const physics::Trip& leader, const physics::SimulationResult& run,
@@ -111,7 +118,10 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     d.clear_s.resize(d.cands.size());
     d.earliest_arrival_s = 1e300;
     for (std::size_t c = 0; c < d.cands.size(); ++c) {
-      d.clear_s[c] = clear_from_s(leader, *d.cands[c], section_start, b, room);
+      const RunReachBlocks* kept = recovery.blocks ? recovery.blocks(d.cands[c]) : nullptr;
+      d.clear_s[c] = kept != nullptr
+                         ? clear_from_s(leader, *d.cands[c], section_start, b, room, *kept)
+                         : clear_from_s(leader, *d.cands[c], section_start, b, room);
       d.min_run_s = std::min(d.min_run_s, d.cands[c]->running_time_s);
       d.earliest_arrival_s =
           std::min(d.earliest_arrival_s, d.clear_s[c] + d.cands[c]->running_time_s);
@@ -294,39 +304,59 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
 // departure, whatever the time the train is ready (the leader's position never decreases).
 double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
                     double section_start_m, double b, double room_m) {
+  return clear_from_s(leader, run, section_start_m, b, room_m, reach_blocks(run, b, room_m, 32));
+}
+
+RunReachBlocks reach_blocks(const physics::SimulationResult& run, double b, double room_m,
+                            std::size_t block) {
+  RunReachBlocks out;
+  out.block = std::max<std::size_t>(block, 1);
+  const auto& trace = run.trace;
+  for (std::size_t i = 0; i < trace.size(); i += out.block) {
+    double far = -1e300, early = 1e300;
+    const std::size_t end = std::min(trace.size(), i + out.block);
+    for (std::size_t q = i; q < end; ++q) {
+      far = std::max(far, trace[q].s_m + room_m + trace[q].v_ms * trace[q].v_ms / (2.0 * b));
+      early = std::min(early, trace[q].t_s);
+    }
+    out.reach_m.push_back(far);
+    out.early_s.push_back(early);
+  }
+  return out;
+}
+
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double b, double room_m, const RunReachBlocks& blocks) {
   // The largest of leader_clear_at(ahead) - t over the samples, found block by block: the
   // leader's clear time never falls as the position grows, so a block's farthest need at its
   // earliest time bounds every sample in it, and only blocks whose bound exceeds the largest
-  // value found so far are evaluated sample by sample (the same maximum as a full pass).
-  constexpr std::size_t kBlock = 32;
+  // value found so far are evaluated sample by sample (the same maximum as a full pass). The
+  // farthest need is summed in another order than a sample's, so it is taken a micrometre
+  // farther: still a bound, and the maximum is the samples' own.
   const auto& trace = run.trace;
   auto ahead_of = [&](const physics::TracePoint& p) {
     return section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
   };
-  double from = leader_clear_at(leader, section_start_m + room_m);
+  std::size_t hint = 0;
+  double from = leader_clear_at(leader, section_start_m + room_m, &hint);
   struct Block {
     double bound;
     std::size_t first;
   };
-  std::vector<Block> blocks;
-  blocks.reserve(trace.size() / kBlock + 1);
-  for (std::size_t i = 0; i < trace.size(); i += kBlock) {
-    double far = -1e300, early = 1e300;
-    const std::size_t end = std::min(trace.size(), i + kBlock);
-    for (std::size_t q = i; q < end; ++q) {
-      far = std::max(far, ahead_of(trace[q]));
-      early = std::min(early, trace[q].t_s);
-    }
-    blocks.push_back({leader_clear_at(leader, far) - early, i});
-  }
-  std::sort(blocks.begin(), blocks.end(), [](const Block& x, const Block& y) {
+  std::vector<Block> order;
+  order.reserve(blocks.reach_m.size());
+  for (std::size_t i = 0; i < blocks.reach_m.size(); ++i)
+    order.push_back({leader_clear_at(leader, section_start_m + blocks.reach_m[i] + 1e-6, &hint) -
+                         blocks.early_s[i],
+                     i * blocks.block});
+  std::sort(order.begin(), order.end(), [](const Block& x, const Block& y) {
     return x.bound > y.bound || (x.bound == y.bound && x.first < y.first);
   });
-  for (const Block& blk : blocks) {
+  for (const Block& blk : order) {
     if (blk.bound <= from) break;
-    const std::size_t end = std::min(trace.size(), blk.first + kBlock);
+    const std::size_t end = std::min(trace.size(), blk.first + blocks.block);
     for (std::size_t q = blk.first; q < end; ++q)
-      from = std::max(from, leader_clear_at(leader, ahead_of(trace[q])) - trace[q].t_s);
+      from = std::max(from, leader_clear_at(leader, ahead_of(trace[q]), &hint) - trace[q].t_s);
   }
   return from;
 }

@@ -115,5 +115,35 @@ TEST(FollowerPruning, ThePrunedProgrammeChoosesThePathOfThePlainOne) {
   EXPECT_GT(held_up, 12);  // the cases do hold the follower up
 }
 
+// The shortcuts under the programme give the plain answers bit for bit: time_at searched from a
+// hint, and the clear time from blocks made beforehand (any block size).
+TEST(FollowerPruning, HintedSearchAndKeptBlocksGiveTheSameTimes) {
+  const dp::SectionLibrary& lib = small_library();
+  const double b = service::default_separation_braking_m_s2(lib.train());
+  const double room = 150.0;
+  std::vector<const physics::SimulationResult*> runs;
+  for (std::size_t k = 0; k < kSections; ++k)
+    runs.push_back(&run_for(k, lib.min_time_s(k % lib.size()) + 8.0));
+  const physics::Trip leader = trip_of(runs, {30, 90, 30, 30, 30, 0}, 40.0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> along(0.0, leader.length_m());
+  std::size_t hint = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // Jumps and small steps, forwards and back.
+    const double x = i % 3 == 0 ? along(rng) : std::min(leader.length_m(), along(rng) * 1e-3 + i);
+    ASSERT_EQ(leader.time_at(x, &hint), leader.time_at(x)) << x;
+  }
+  for (std::size_t k = 0; k < kSections; ++k)
+    for (const double extra : {0.0, 3.0, 12.0}) {
+      const physics::SimulationResult& run = run_for(k, lib.min_time_s(k % lib.size()) + extra);
+      const double start = leader.section_start_m(k);
+      const double plain = service::clear_from_s(leader, run, start, b, room);
+      for (const std::size_t block : {1, 16, 32, 1000})
+        EXPECT_EQ(service::clear_from_s(leader, run, start, b, room,
+                                        service::reach_blocks(run, b, room, block)),
+                  plain);
+    }
+}
+
 }  // namespace
 }  // namespace ecorail::recovery
