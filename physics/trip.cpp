@@ -35,6 +35,13 @@ Trip::Trip(const std::vector<TripSection>& sections, double departure_s, double 
   if (sections.empty()) throw std::invalid_argument("a trip needs at least one section");
   auto data = std::make_shared<Data>();
   data->regen_efficiency = regen_efficiency;
+  std::size_t samples = 1;
+  for (const TripSection& sec : sections)
+    if (sec.sim != nullptr) samples += sec.sim->trace.size() + 1;
+  data->samples.reserve(samples);
+  data->routes.reserve(sections.size());
+  data->section_start_m.reserve(sections.size());
+  data->stops.reserve(sections.size() + 1);
   double t = 0.0, s0 = 0.0;
   for (std::size_t i = 0; i < sections.size(); ++i) {
     const TripSection& sec = sections[i];

@@ -117,6 +117,8 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
     throw DelayInputError("delay", buf);
   }
   const TrainStops& st = plan.trains[train];
+  // Every section's engine is needed (the followers run the whole line): built side by side.
+  library.build_engines(0, n);
   const detail::TrainTimes times = detail::train_times(library, plan, train, options);
 
   const double late_departure = st.departure_s[station] + delay_s;

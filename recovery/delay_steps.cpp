@@ -35,7 +35,7 @@ std::unique_ptr<Run> RunCache::make(std::size_t k, double time_s) const {
     run->flat_out = true;
     return run;
   }
-  const dp::SectionTimeSolve sol = library_.solve(k, time_s);
+  const dp::SectionTimeSolve sol = library_.solve(k, time_s, &lattice_[k]);
   const physics::SimulationResult& sim = sol.search.run.sim;
   if (!sol.search.converged || !dp::run_arrives(sim) ||
       std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
