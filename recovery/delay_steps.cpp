@@ -285,6 +285,12 @@ double lay_out_runs(const dp::SectionLibrary& library, const Plan& plan, std::si
   std::vector<physics::TripSection> rec_sections, rule_sections, plan_sections;
   double dep = late_departure, rule_dep = late_departure;
   double arrival = late_departure;
+  {
+    // The three runs of each section solved first, sections side by side.
+    std::vector<std::vector<double>> times(n);
+    for (std::size_t k = station; k < last; ++k) times[k] = {r[k], t_new[k], t_rule[k]};
+    cache.prefetch(times);
+  }
   for (std::size_t k = station; k < last; ++k) {
     RecoverySection s;
     s.index = k;

@@ -339,24 +339,45 @@ double clear_from_s(const physics::Trip& leader, const physics::SimulationResult
   };
   std::size_t hint = 0;
   double from = leader_clear_at(leader, section_start_m + room_m, &hint);
-  struct Block {
+  // Two levels: groups of kGroup blocks first (their farthest need at their earliest time bounds
+  // every block in them), then the blocks of a group whose bound exceeds the largest value so
+  // far, then the samples of such a block.
+  constexpr std::size_t kGroup = 8;
+  struct Bounded {
     double bound;
-    std::size_t first;
+    std::size_t first;  // block index
   };
-  std::vector<Block> order;
-  order.reserve(blocks.reach_m.size());
-  for (std::size_t i = 0; i < blocks.reach_m.size(); ++i)
-    order.push_back({leader_clear_at(leader, section_start_m + blocks.reach_m[i] + 1e-6, &hint) -
-                         blocks.early_s[i],
-                     i * blocks.block});
-  std::sort(order.begin(), order.end(), [](const Block& x, const Block& y) {
+  auto by_bound = [](const Bounded& x, const Bounded& y) {
     return x.bound > y.bound || (x.bound == y.bound && x.first < y.first);
-  });
-  for (const Block& blk : order) {
-    if (blk.bound <= from) break;
-    const std::size_t end = std::min(trace.size(), blk.first + blocks.block);
-    for (std::size_t q = blk.first; q < end; ++q)
-      from = std::max(from, leader_clear_at(leader, ahead_of(trace[q]), &hint) - trace[q].t_s);
+  };
+  const std::size_t count = blocks.reach_m.size();
+  std::vector<Bounded> groups;
+  groups.reserve(count / kGroup + 1);
+  for (std::size_t g = 0; g < count; g += kGroup) {
+    double far = -1e300, early = 1e300;
+    for (std::size_t i = g; i < std::min(count, g + kGroup); ++i) {
+      far = std::max(far, blocks.reach_m[i]);
+      early = std::min(early, blocks.early_s[i]);
+    }
+    groups.push_back({leader_clear_at(leader, section_start_m + far + 1e-6, &hint) - early, g});
+  }
+  std::sort(groups.begin(), groups.end(), by_bound);
+  std::vector<Bounded> order;
+  for (const Bounded& grp : groups) {
+    if (grp.bound <= from) break;
+    order.clear();
+    for (std::size_t i = grp.first; i < std::min(count, grp.first + kGroup); ++i)
+      order.push_back({leader_clear_at(leader, section_start_m + blocks.reach_m[i] + 1e-6, &hint) -
+                           blocks.early_s[i],
+                       i});
+    std::sort(order.begin(), order.end(), by_bound);
+    for (const Bounded& blk : order) {
+      if (blk.bound <= from) break;
+      const std::size_t first = blk.first * blocks.block;
+      const std::size_t end = std::min(trace.size(), first + blocks.block);
+      for (std::size_t q = first; q < end; ++q)
+        from = std::max(from, leader_clear_at(leader, ahead_of(trace[q]), &hint) - trace[q].t_s);
+    }
   }
   return from;
 }
