@@ -272,6 +272,14 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   // late at the last stop whatever it does) the least final lateness, within kLate_s, as the
   // late train runs flat out when no station absorbs its delay, then the least energy.
   const std::vector<State>& final_states = stages[n];
+  if (final_states.empty()) {
+    // The bounds keep a state no worse than their path at every stop, so this is not expected;
+    // should rounding ever drop them all, the plain programme answers.
+    if (!bounded) throw std::logic_error("follower_path: no state reaches the last stop");
+    FollowerRecovery plain = recovery;
+    plain.prune = false;
+    return follower_path(plan, leader, planned, b, room, plain, from, first, ready_s);
+  }
   double least = 1e300;
   for (const State& s : final_states) least = std::min(least, s.lateness);
   const double tie = recovery.lateness_first ? kLate_s : 0.5;
