@@ -16,7 +16,8 @@
 // programme over its stops chooses, section by section, one of the candidate runs (faster or
 // slower than planned), the least wait at each stop that keeps that run clear of the train
 // ahead, and dwells down to the least dwell when late; it is exact over the candidate runs
-// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is
+// (being ready to leave earlier is never worse, so dominated states are dropped, and so are
+// states that a lower bound shows can no longer be chosen). The whole run is
 // scanned once more against the train ahead and a run that comes closer than the braking distance
 // anywhere is an error (std::logic_error), never a result.
 #pragma once
