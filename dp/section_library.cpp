@@ -214,8 +214,13 @@ void SectionLibrary::build_frontiers(std::size_t first, std::size_t last,
 }
 
 SectionTimeSolve SectionLibrary::solve(std::size_t i, double running_time_s) const {
+  return solve(i, running_time_s, nullptr);
+}
+
+SectionTimeSolve SectionLibrary::solve(std::size_t i, double running_time_s,
+                                       LatticeRuns* memo) const {
   SectionTimeSolve out;
-  out.search = solve_for_time(engine(i), running_time_s, options_.search);
+  out.search = solve_for_time(engine(i), running_time_s, options_.search, {}, memo);
   out.trip = physics::Trip({{&routes_[i], &out.search.run.sim, 0.0}}, 0.0, train_.regen_efficiency);
   return out;
 }

@@ -93,6 +93,9 @@ class SectionLibrary {
 
   // The energy-optimal run of section i in exactly running_time_s (re-simulated).
   SectionTimeSolve solve(std::size_t i, double running_time_s) const;
+  // The same run, the lattice prices its search walks taken from (and kept in) memo: a caller
+  // that solves many times of one section keeps one memo for it (dp::LatticeRuns).
+  SectionTimeSolve solve(std::size_t i, double running_time_s, LatticeRuns* memo) const;
 
   // What was built so far: engines, flat-out runs, frontiers computed, frontiers loaded.
   int engine_builds() const { return engine_builds_; }

@@ -35,6 +35,13 @@ Trip::Trip(const std::vector<TripSection>& sections, double departure_s, double 
   if (sections.empty()) throw std::invalid_argument("a trip needs at least one section");
   auto data = std::make_shared<Data>();
   data->regen_efficiency = regen_efficiency;
+  std::size_t samples = 1;
+  for (const TripSection& sec : sections)
+    if (sec.sim != nullptr) samples += sec.sim->trace.size() + 1;
+  data->samples.reserve(samples);
+  data->routes.reserve(sections.size());
+  data->section_start_m.reserve(sections.size());
+  data->stops.reserve(sections.size() + 1);
   double t = 0.0, s0 = 0.0;
   for (std::size_t i = 0; i < sections.size(); ++i) {
     const TripSection& sec = sections[i];
@@ -167,10 +174,39 @@ double Trip::time_at(double position_m) const {
   }
   const auto it = std::lower_bound(smp.begin(), smp.end(), position_m,
                                    [](const Sample& p, double s) { return p.s_m < s; });
-  if (it == smp.begin()) return offset_s_ + smp.front().t_s;
-  if (it == smp.end()) return offset_s_ + smp.back().t_s;
-  const Sample& b = *it;
-  const Sample& a = *(it - 1);
+  return time_between(static_cast<std::size_t>(it - smp.begin()), position_m);
+}
+
+double Trip::time_at(double position_m, std::size_t* hint) const {
+  const auto& smp = data_->samples;
+  if (!(position_m >= smp.front().s_m - 1e-9 && position_m <= smp.back().s_m + 1e-9)) {
+    throw std::out_of_range("position outside the trip");
+  }
+  // The first sample at or past the position (std::lower_bound's answer), walked to from the
+  // hint when it is near, else searched.
+  const std::size_t size = smp.size();
+  std::size_t i = std::min(*hint, size);
+  constexpr int kWalk = 16;
+  int steps = 0;
+  while (i > 0 && smp[i - 1].s_m >= position_m && steps < kWalk) --i, ++steps;
+  while (i < size && smp[i].s_m < position_m && steps < kWalk) ++i, ++steps;
+  const bool found =
+      (i == 0 || smp[i - 1].s_m < position_m) && (i == size || smp[i].s_m >= position_m);
+  if (!found)
+    i = static_cast<std::size_t>(
+        std::lower_bound(smp.begin(), smp.end(), position_m,
+                         [](const Sample& p, double s) { return p.s_m < s; }) -
+        smp.begin());
+  *hint = i;
+  return time_between(i, position_m);
+}
+
+double Trip::time_between(std::size_t index, double position_m) const {
+  const auto& smp = data_->samples;
+  if (index == 0) return offset_s_ + smp.front().t_s;
+  if (index == smp.size()) return offset_s_ + smp.back().t_s;
+  const Sample& b = smp[index];
+  const Sample& a = smp[index - 1];
   const double d = position_m - a.s_m;
   const double h = b.s_m - a.s_m;
   const double dt = b.t_s - a.t_s;

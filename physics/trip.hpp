@@ -93,6 +93,9 @@ class Trip {
   // First clock time at which the train reaches position s along the run (at a stop: the
   // arrival). Throws std::out_of_range outside [0, length].
   double time_at(double position_m) const;
+  // The same time, bit for bit, searching from sample *hint (and leaving there the sample
+  // found): cheaper when successive positions lie close together, as along a run.
+  double time_at(double position_m, std::size_t* hint) const;
   // Power bins of `count` bins of `step_s` from clock time `start_s`; the trip outside the grid
   // is not counted, so bins covering the whole trip add up to the ledger.
   PowerBins power_bins(double start_s, double step_s, std::size_t count) const;
@@ -115,6 +118,8 @@ class Trip {
 
  private:
   struct Data;
+  // time_at between samples index - 1 and index (index: the first sample at or past it).
+  double time_between(std::size_t index, double position_m) const;
   std::shared_ptr<const Data> data_;
   double offset_s_ = 0.0;  // clock time of the departure
 };

@@ -265,6 +265,8 @@ DelayRecoveryResult recover_delay(const dp::SectionLibrary& library, const Plan&
   check_request(library, plan, train, station, delay_s, options);
   const std::size_t n = plan.sections();
   const TrainStops& st = plan.trains[train];
+  // Every section's engine is needed (the followers run the whole line): built side by side.
+  library.build_engines(0, n);
   const detail::TrainTimes times = detail::train_times(library, plan, train, options);
   const double late_departure_s = st.departure_s[station] + delay_s;
 

@@ -35,7 +35,7 @@ std::unique_ptr<Run> RunCache::make(std::size_t k, double time_s) const {
     run->flat_out = true;
     return run;
   }
-  const dp::SectionTimeSolve sol = library_.solve(k, time_s);
+  const dp::SectionTimeSolve sol = library_.solve(k, time_s, &lattice_[k]);
   const physics::SimulationResult& sim = sol.search.run.sim;
   if (!sol.search.converged || !dp::run_arrives(sim) ||
       std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
@@ -285,6 +285,12 @@ double lay_out_runs(const dp::SectionLibrary& library, const Plan& plan, std::si
   std::vector<physics::TripSection> rec_sections, rule_sections, plan_sections;
   double dep = late_departure, rule_dep = late_departure;
   double arrival = late_departure;
+  {
+    // The three runs of each section solved first, sections side by side.
+    std::vector<std::vector<double>> times(n);
+    for (std::size_t k = station; k < last; ++k) times[k] = {r[k], t_new[k], t_rule[k]};
+    cache.prefetch(times);
+  }
   for (std::size_t k = station; k < last; ++k) {
     RecoverySection s;
     s.index = k;

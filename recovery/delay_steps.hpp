@@ -29,7 +29,7 @@ struct Run {
 class RunCache {
  public:
   RunCache(const dp::SectionLibrary& library, double flat_out_threshold_s)
-      : library_(library), threshold_s_(flat_out_threshold_s) {}
+      : library_(library), threshold_s_(flat_out_threshold_s), lattice_(library.size()) {}
   const Run& get(std::size_t section, double time_s);
   // Solves the runs of times_s[section] not yet held, sections side by side (OpenMP).
   void prefetch(const std::vector<std::vector<double>>& times_s);
@@ -42,6 +42,8 @@ class RunCache {
   const dp::SectionLibrary& library_;
   double threshold_s_;
   std::map<std::pair<std::size_t, long long>, std::unique_ptr<Run>> runs_;
+  // Per section, the lattice prices the solves walk (the same runs as solving each time alone).
+  mutable std::vector<dp::LatticeRuns> lattice_;
 };
 
 // The late train's minimum running times, planned running times and least dwells (per

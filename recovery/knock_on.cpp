@@ -51,7 +51,14 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
   const double b = sep.braking_m_s2 > 0.0
                        ? sep.braking_m_s2
                        : service::default_separation_braking_m_s2(library.train());
+  // A train's planned runs, solved sections side by side.
+  auto prefetch_planned = [&](std::size_t k) {
+    std::vector<std::vector<double>> times(n);
+    for (std::size_t j = 0; j < n; ++j) times[j] = {plan.running_time_s(k, j)};
+    cache.prefetch(times);
+  };
   auto planned_runs = [&](std::size_t k) {
+    prefetch_planned(k);
     std::vector<const physics::SimulationResult*> runs;
     for (std::size_t j = 0; j < n; ++j)
       runs.push_back(&cache.get(j, plan.running_time_s(k, j)).sim);
@@ -86,6 +93,7 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
                         options.max_followers);
     std::vector<physics::ControlProgram> programs;
     std::vector<physics::SimulationResult> sims;
+    prefetch_planned(f);
     for (std::size_t j = 0; j < n; ++j) {
       const Run& run = cache.get(j, plan.running_time_s(f, j));
       if (run.flat_out)

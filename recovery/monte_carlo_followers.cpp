@@ -110,15 +110,7 @@ DrivenFollowers::DrivenFollowers(const dp::SectionLibrary& library, const Plan& 
       r->thinned.trace.shrink_to_fit();
       r->sim = &r->thinned;
       const auto& tr = r->sim->trace;
-      for (std::size_t i = 0; i < tr.size(); i += kNeedBlock) {
-        double need = 0.0, when = 1e300;
-        for (std::size_t q = i; q < std::min(tr.size(), i + kNeedBlock); ++q) {
-          need = std::max(need, tr[q].s_m + room_m_ + tr[q].v_ms * tr[q].v_ms / (2.0 * b));
-          when = std::min(when, tr[q].t_s);
-        }
-        r->need_m.push_back(need);
-        r->need_t_s.push_back(when);
-      }
+      r->need = service::reach_blocks(*r->sim, b, room_m_, kNeedBlock);
       const double length = library.route(k).length_m();
       std::size_t q = 0;
       for (int i = 0;; ++i) {
@@ -200,11 +192,12 @@ bool DrivenFollowers::clear(const TrainTrack& leader, std::size_t k, const Drive
                             double departure_s) const {
   if (leader.runs.empty()) return true;
   bool coarse = true;
-  for (std::size_t i = 0; i < run.need_m.size() && coarse; ++i)
-    coarse = reach_time_s(leader, station_m_[k] + run.need_m[i]) <= departure_s + run.need_t_s[i];
+  for (std::size_t i = 0; i < run.need.reach_m.size() && coarse; ++i)
+    coarse = reach_time_s(leader, station_m_[k] + run.need.reach_m[i]) <=
+             departure_s + run.need.early_s[i];
   if (coarse) return true;
-  return service::clear_from_s(trip(leader), *run.sim, station_m_[k], braking_m_s2_, room_m_) <=
-         departure_s + 1e-9;
+  return service::clear_from_s(trip(leader), *run.sim, station_m_[k], braking_m_s2_, room_m_,
+                               run.need) <= departure_s + 1e-9;
 }
 
 const physics::Trip& DrivenFollowers::trip(const TrainTrack& t) const {
@@ -236,6 +229,12 @@ std::vector<DrivenStep> DrivenFollowers::path(std::size_t train, const TrainTrac
   const physics::Trip planned = p.plan.trip.shifted(plan_.trains[train].departure_s[0]);
   service::FollowerRecovery recovery;
   recovery.min_dwell_s = p.times.min_dwell_s;
+  recovery.blocks = [this, &p](const physics::SimulationResult* sim) {
+    for (std::size_t k = 0; k < p.planned.size(); ++k)
+      if (sim == &p.plan.runs[k]) return &p.planned[k]->need;
+    const auto it = by_sim_.find(sim);
+    return it == by_sim_.end() ? nullptr : &it->second->need;
+  };
   recovery.runs = [&p](std::size_t first) {
     return std::vector<std::vector<const physics::SimulationResult*>>(
         p.candidates.begin() + static_cast<long>(first), p.candidates.end());

@@ -40,9 +40,10 @@ struct DrivenRun {
   // separation is checked on these samples; time, energy and the run's end are its own).
   physics::SimulationResult thinned;
   const physics::SimulationResult* sim = &thinned;
-  // As a follower leaving at d: the line ahead must be clear to section start + need_m[i] by
-  // d + need_t_s[i] (each a block of trace points: the farthest need, the earliest time).
-  std::vector<double> need_m, need_t_s;
+  // As a follower leaving at d: the line ahead must be clear to section start + need.reach_m[i]
+  // by d + need.early_s[i] (each a block of trace points: the farthest need, the earliest time);
+  // also what service::clear_from_s and follower_path take instead of making them again.
+  service::RunReachBlocks need;
   // As a leader leaving at D: past section start + i kReachStep_m by D + reach_t_s[i] at the
   // latest.
   std::vector<double> reach_t_s;

@@ -27,6 +27,13 @@ double leader_clear_at(const physics::Trip& leader, double position_m) {
   return leader.time_at(std::max(0.0, position_m));
 }
 
+// The same, searching the leader's samples from *hint (physics::Trip::time_at).
+double leader_clear_at(const physics::Trip& leader, double position_m, std::size_t* hint) {
+  const double length = leader.length_m();
+  if (position_m >= length) return leader.arrival_s();
+  return leader.time_at(std::max(0.0, position_m), hint);
+}
+
 // The least wait before leaving at start_s for which `run` (a section's run from rest, its own
 // clock from 0) keeps gap >= v^2 / 2b behind the leader at every trace point and at the start.
 double clearance_wait_s(const physics::Trip& leader, const physics::SimulationResult& run,
@@ -64,7 +71,10 @@ bool arrives(const physics::SimulationResult& sim) {
 // runs, leaving when ready or after the least wait that keeps that run clear of the train ahead
 // (exact on the samples, rounded up as every wait is). Being ready earlier is never worse (the
 // follower could wait), so a state is dropped when another is ready no later with no more
-// lateness and no more energy: the programme is exact over the candidate runs. Objective:
+// lateness and no more energy: the programme is exact over the candidate runs. A state is also
+// dropped when a lower bound of its lateness (or, energy first, of its final lateness) already
+// exceeds what one pessimistically timed whole path reaches (FollowerRecovery::prune): such a
+// state is never chosen, and the states it would lead to are the most numerous. Objective:
 // back on time at the earliest station, then the least final lateness (when it cannot be back
 // on time by the last stop), then least energy; or, lateness first, the least sum of arrival
 // lateness, then least energy.
@@ -88,42 +98,139 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   };
   std::vector<std::vector<const physics::SimulationResult*>> extra;
   if (first < n && recovery.runs) extra = recovery.runs(first);
+  // Each section's candidates, when each may leave (clear_from_s), the planned arrival, the next
+  // planned departure and the least dwell at its end.
+  struct Stage {
+    std::vector<const physics::SimulationResult*> cands;
+    std::vector<double> clear_s;
+    double planned_arrival_s = 0.0, next_departure_s = 0.0, least_dwell_s = 0.0;
+    double min_run_s = 1e300;         // the least running time of the candidates
+    double earliest_arrival_s = 0.0;  // least of clear + running time over the candidates
+  };
+  std::vector<Stage> data(n);
+  for (std::size_t k = from; k < n; ++k) {
+    Stage& d = data[k];
+    d.cands = {&plan.runs[k]};
+    if (k >= first && k - first < extra.size())
+      for (const physics::SimulationResult* r : extra[k - first])
+        if (r != nullptr && r != &plan.runs[k]) d.cands.push_back(r);
+    const double section_start = plan.trip.section_start_m(k);
+    d.clear_s.resize(d.cands.size());
+    d.earliest_arrival_s = 1e300;
+    for (std::size_t c = 0; c < d.cands.size(); ++c) {
+      const RunReachBlocks* kept = recovery.blocks ? recovery.blocks(d.cands[c]) : nullptr;
+      d.clear_s[c] = kept != nullptr
+                         ? clear_from_s(leader, *d.cands[c], section_start, b, room, *kept)
+                         : clear_from_s(leader, *d.cands[c], section_start, b, room);
+      d.min_run_s = std::min(d.min_run_s, d.cands[c]->running_time_s);
+      d.earliest_arrival_s =
+          std::min(d.earliest_arrival_s, d.clear_s[c] + d.cands[c]->running_time_s);
+    }
+    d.planned_arrival_s = planned.stop(k + 1).arrival_s;
+    d.next_departure_s = k + 1 < n ? planned.stop(k + 1).departure_s : 0.0;
+    d.least_dwell_s = k + 1 < n ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
+                                                                 ? recovery.min_dwell_s[k + 1]
+                                                                 : plan.dwells_s[k])
+                                : 0.0;
+  }
+  const double last_planned = planned.stop(n).arrival_s;
+  // The move of the programme: candidate c of section k from a state ready at `ready`.
+  struct Move {
+    double departure_s, arrival_s, ready_s, clear_departure_s;
+  };
+  auto move = [&](std::size_t k, std::size_t c, double ready) {
+    const Stage& d = data[k];
+    const double rt = d.cands[c]->running_time_s;
+    const double clear_dep = rounded_departure(ready, d.clear_s[c]);
+    // Never arriving before the timetable: a run that would leaves later (waiting longer at the
+    // stop is always clear, the leader's position never decreases).
+    const double dep = std::max(clear_dep, d.planned_arrival_s - rt);
+    const double arr = dep + rt;
+    const double next = k + 1 < n ? std::max(d.next_departure_s, arr + d.least_dwell_s) : arr;
+    return Move{dep, arr, next, clear_dep};
+  };
+  auto add_lateness = [&](std::size_t k, double lateness, double late) {
+    if (recovery.lateness_first) return lateness + std::max(0.0, late);
+    return late > kLate_s ? static_cast<double>(k + 1) : lateness;  // the last late stop so far
+  };
+  // Bounds that drop states which cannot be the optimum (FollowerRecovery::prune). A lower bound
+  // of what a state at stop k (ready at `ready`, lateness so far) reaches at the last stop: no
+  // run leaves before the follower is ready nor before that run is clear, nor arrives before
+  // the timetable, so each arrival is at least max(planned, ready + the least running time, the
+  // least clear time + running time); lateness only grows.
+  struct Bound {
+    double lateness, final_late_s;
+  };
+  auto lower_bound = [&](std::size_t k, double ready, double lateness) {
+    for (std::size_t j = k; j < n; ++j) {
+      const Stage& d = data[j];
+      const double arr = std::max({d.planned_arrival_s, ready + d.min_run_s, d.earliest_arrival_s});
+      const double late = arr - d.planned_arrival_s;
+      if (recovery.lateness_first)
+        lateness += std::max(0.0, late);
+      else if (late > kLate_s + 1e-9)
+        lateness = static_cast<double>(j + 1);
+      ready = j + 1 < n ? std::max(d.next_departure_s, arr + d.least_dwell_s) : arr;
+    }
+    return Bound{lateness, ready - last_planned};
+  };
+  // An upper bound: one whole path (at each stop the run that is ready earliest at the next,
+  // then the least energy), timed pessimistically: a wait is taken as ending 0.061 s after the
+  // clear time, at least the most the rounding of any state's wait adds (under 0.06 s). By
+  // induction over the stops, the programme keeps at each stop a state that is ready no later
+  // and no more late than this path (a state that dominates its predecessor is ready no later,
+  // so it leaves no later on the same run), hence a final state no worse in lateness and time.
+  bool bounded = recovery.prune;
+  double ub_lateness = 0.0, ub_final_late_s = 0.0;
+  if (bounded) {
+    double ready = ready_s, lateness = 0.0;
+    for (std::size_t k = from; k < n; ++k) {
+      const Stage& d = data[k];
+      double best_ready = 1e300, best_energy = 1e300, best_late = 0.0;
+      for (std::size_t c = 0; c < d.cands.size(); ++c) {
+        const double rt = d.cands[c]->running_time_s;
+        const double dep = std::max({ready, d.clear_s[c] + 0.061, d.planned_arrival_s - rt});
+        const double arr = dep + rt;
+        const double next = k + 1 < n ? std::max(d.next_departure_s, arr + d.least_dwell_s) : arr;
+        const double e = d.cands[c]->energy.traction_work_J;
+        if (next < best_ready || (next == best_ready && e < best_energy)) {
+          best_ready = next;
+          best_energy = e;
+          best_late = arr - d.planned_arrival_s;
+        }
+      }
+      lateness = add_lateness(k, lateness, best_late);
+      ready = best_ready;
+    }
+    ub_lateness = lateness;
+    ub_final_late_s = ready - last_planned;
+  }
+  // Energy first: the least final lateness index is at most the path's; when it is also the
+  // least any state can reach, the least final lateness in time is at most the path's too.
+  const Bound from_start = lower_bound(from, ready_s, 0.0);
+  const bool time_bound =
+      bounded && !recovery.lateness_first && from_start.lateness >= ub_lateness - 0.5;
+  auto hopeless = [&](std::size_t k, double ready, double lateness) {
+    const Bound lb = lower_bound(k, ready, lateness);
+    if (recovery.lateness_first) return lb.lateness > ub_lateness + kLate_s + 1e-6;
+    if (lb.lateness > ub_lateness + 0.5) return true;
+    return time_bound && lb.final_late_s > std::max(ub_final_late_s, 0.0) + kLate_s + 1e-6;
+  };
   std::vector<std::vector<State>> stages(n + 1);
   stages[from].push_back({ready_s, 0.0, 0.0, -1, nullptr, ready_s, 0.0});
   for (std::size_t k = from; k < n; ++k) {
-    std::vector<const physics::SimulationResult*> cands = {&plan.runs[k]};
-    if (k >= first && k - first < extra.size())
-      for (const physics::SimulationResult* r : extra[k - first])
-        if (r != nullptr && r != &plan.runs[k]) cands.push_back(r);
-    const double section_start = plan.trip.section_start_m(k);
-    std::vector<double> clear(cands.size());
-    for (std::size_t c = 0; c < cands.size(); ++c)
-      clear[c] = clear_from_s(leader, *cands[c], section_start, b, room);
-    const double planned_arrival = planned.stop(k + 1).arrival_s;
-    const double least_dwell = k + 1 < n
-                                   ? std::min(plan.dwells_s[k], k + 1 < recovery.min_dwell_s.size()
-                                                                    ? recovery.min_dwell_s[k + 1]
-                                                                    : plan.dwells_s[k])
-                                   : 0.0;
+    const Stage& d = data[k];
     std::vector<State> next;
+    next.reserve(stages[k].size() * d.cands.size());
     for (std::size_t si = 0; si < stages[k].size(); ++si) {
       const State& s = stages[k][si];
-      for (std::size_t c = 0; c < cands.size(); ++c) {
-        const double clear_dep = rounded_departure(s.ready_s, clear[c]);
-        // Never arriving before the timetable: a run that would leaves later (waiting longer
-        // at the stop is always clear, the leader's position never decreases).
-        const double dep = std::max(clear_dep, planned_arrival - cands[c]->running_time_s);
-        const double arr = dep + cands[c]->running_time_s;
-        const double late = arr - planned_arrival;
-        double lateness = s.lateness;
-        if (recovery.lateness_first)
-          lateness += std::max(0.0, late);
-        else if (late > kLate_s)
-          lateness = static_cast<double>(k + 1);  // the last late stop so far
-        const double ready =
-            k + 1 < n ? std::max(planned.stop(k + 1).departure_s, arr + least_dwell) : arr;
-        next.push_back({ready, lateness, s.energy_J + cands[c]->energy.traction_work_J,
-                        static_cast<int>(si), cands[c], dep, clear_dep - s.ready_s});
+      for (std::size_t c = 0; c < d.cands.size(); ++c) {
+        const Move m = move(k, c, s.ready_s);
+        const double lateness = add_lateness(k, s.lateness, m.arrival_s - d.planned_arrival_s);
+        if (bounded && hopeless(k + 1, m.ready_s, lateness)) continue;
+        next.push_back({m.ready_s, lateness, s.energy_J + d.cands[c]->energy.traction_work_J,
+                        static_cast<int>(si), d.cands[c], m.departure_s,
+                        m.clear_departure_s - s.ready_s});
       }
     }
     // Pareto front over (ready, lateness, energy); the tolerance on lateness ties near-equal
@@ -165,7 +272,14 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   // late at the last stop whatever it does) the least final lateness, within kLate_s, as the
   // late train runs flat out when no station absorbs its delay, then the least energy.
   const std::vector<State>& final_states = stages[n];
-  const double last_planned = planned.stop(n).arrival_s;
+  if (final_states.empty()) {
+    // The bounds keep a state no worse than their path at every stop, so this is not expected;
+    // should rounding ever drop them all, the plain programme answers.
+    if (!bounded) throw std::logic_error("follower_path: no state reaches the last stop");
+    FollowerRecovery plain = recovery;
+    plain.prune = false;
+    return follower_path(plan, leader, planned, b, room, plain, from, first, ready_s);
+  }
   double least = 1e300;
   for (const State& s : final_states) least = std::min(least, s.lateness);
   const double tie = recovery.lateness_first ? kLate_s : 0.5;
@@ -198,39 +312,80 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
 // departure, whatever the time the train is ready (the leader's position never decreases).
 double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
                     double section_start_m, double b, double room_m) {
+  return clear_from_s(leader, run, section_start_m, b, room_m, reach_blocks(run, b, room_m, 32));
+}
+
+RunReachBlocks reach_blocks(const physics::SimulationResult& run, double b, double room_m,
+                            std::size_t block) {
+  RunReachBlocks out;
+  out.block = std::max<std::size_t>(block, 1);
+  const auto& trace = run.trace;
+  for (std::size_t i = 0; i < trace.size(); i += out.block) {
+    double far = -1e300, early = 1e300;
+    const std::size_t end = std::min(trace.size(), i + out.block);
+    for (std::size_t q = i; q < end; ++q) {
+      far = std::max(far, trace[q].s_m + room_m + trace[q].v_ms * trace[q].v_ms / (2.0 * b));
+      early = std::min(early, trace[q].t_s);
+    }
+    out.reach_m.push_back(far);
+    out.early_s.push_back(early);
+  }
+  return out;
+}
+
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double b, double room_m, const RunReachBlocks& blocks) {
   // The largest of leader_clear_at(ahead) - t over the samples, found block by block: the
   // leader's clear time never falls as the position grows, so a block's farthest need at its
   // earliest time bounds every sample in it, and only blocks whose bound exceeds the largest
-  // value found so far are evaluated sample by sample (the same maximum as a full pass).
-  constexpr std::size_t kBlock = 32;
+  // value found so far are evaluated sample by sample (the same maximum as a full pass). The
+  // farthest need is summed in another order than a sample's, so it is taken a micrometre
+  // farther: still a bound, and the maximum is the samples' own.
   const auto& trace = run.trace;
   auto ahead_of = [&](const physics::TracePoint& p) {
     return section_start_m + p.s_m + room_m + p.v_ms * p.v_ms / (2.0 * b);
   };
-  double from = leader_clear_at(leader, section_start_m + room_m);
-  struct Block {
+  std::size_t hint = 0;
+  double from = leader_clear_at(leader, section_start_m + room_m, &hint);
+  // Two levels: groups of kGroup blocks first (their farthest need at their earliest time bounds
+  // every block in them), then the blocks of a group whose bound exceeds the largest value so
+  // far, then the samples of such a block.
+  constexpr std::size_t kGroup = 8;
+  struct Bounded {
     double bound;
-    std::size_t first;
+    std::size_t first;  // block index
   };
-  std::vector<Block> blocks;
-  blocks.reserve(trace.size() / kBlock + 1);
-  for (std::size_t i = 0; i < trace.size(); i += kBlock) {
-    double far = -1e300, early = 1e300;
-    const std::size_t end = std::min(trace.size(), i + kBlock);
-    for (std::size_t q = i; q < end; ++q) {
-      far = std::max(far, ahead_of(trace[q]));
-      early = std::min(early, trace[q].t_s);
-    }
-    blocks.push_back({leader_clear_at(leader, far) - early, i});
-  }
-  std::sort(blocks.begin(), blocks.end(), [](const Block& x, const Block& y) {
+  auto by_bound = [](const Bounded& x, const Bounded& y) {
     return x.bound > y.bound || (x.bound == y.bound && x.first < y.first);
-  });
-  for (const Block& blk : blocks) {
-    if (blk.bound <= from) break;
-    const std::size_t end = std::min(trace.size(), blk.first + kBlock);
-    for (std::size_t q = blk.first; q < end; ++q)
-      from = std::max(from, leader_clear_at(leader, ahead_of(trace[q])) - trace[q].t_s);
+  };
+  const std::size_t count = blocks.reach_m.size();
+  std::vector<Bounded> groups;
+  groups.reserve(count / kGroup + 1);
+  for (std::size_t g = 0; g < count; g += kGroup) {
+    double far = -1e300, early = 1e300;
+    for (std::size_t i = g; i < std::min(count, g + kGroup); ++i) {
+      far = std::max(far, blocks.reach_m[i]);
+      early = std::min(early, blocks.early_s[i]);
+    }
+    groups.push_back({leader_clear_at(leader, section_start_m + far + 1e-6, &hint) - early, g});
+  }
+  std::sort(groups.begin(), groups.end(), by_bound);
+  std::vector<Bounded> order;
+  for (const Bounded& grp : groups) {
+    if (grp.bound <= from) break;
+    order.clear();
+    for (std::size_t i = grp.first; i < std::min(count, grp.first + kGroup); ++i)
+      order.push_back({leader_clear_at(leader, section_start_m + blocks.reach_m[i] + 1e-6, &hint) -
+                           blocks.early_s[i],
+                       i});
+    std::sort(order.begin(), order.end(), by_bound);
+    for (const Bounded& blk : order) {
+      if (blk.bound <= from) break;
+      const std::size_t first = blk.first * blocks.block;
+      const std::size_t end = std::min(trace.size(), first + blocks.block);
+      for (std::size_t q = first; q < end; ++q)
+        from = std::max(from, leader_clear_at(leader, ahead_of(trace[q]), &hint) - trace[q].t_s);
+    }
   }
   return from;
 }

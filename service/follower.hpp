@@ -16,7 +16,8 @@
 // programme over its stops chooses, section by section, one of the candidate runs (faster or
 // slower than planned), the least wait at each stop that keeps that run clear of the train
 // ahead, and dwells down to the least dwell when late; it is exact over the candidate runs
-// (being ready to leave earlier is never worse, so dominated states are dropped). The whole run is
+// (being ready to leave earlier is never worse, so dominated states are dropped, and so are
+// states that a lower bound shows can no longer be chosen). The whole run is
 // scanned once more against the train ahead and a run that comes closer than the braking distance
 // anywhere is an error (std::logic_error), never a result.
 #pragma once
@@ -43,6 +44,12 @@ struct FollowerRun {
   SeparationScan scan;           // the actual run against the train ahead
 };
 
+// A run's trace in blocks (see reach_blocks below).
+struct RunReachBlocks {
+  std::size_t block = 0;
+  std::vector<double> reach_m, early_s;
+};
+
 // How a held-up follower is driven back on time: runs(first) gives, for every section from
 // `first` (the first one where its planned run must wait) to the last, the runs it may drive
 // there besides its planned one (e.g. the energy-optimal runs for a grid of running times;
@@ -55,6 +62,15 @@ struct FollowerRecovery {
   std::function<std::vector<std::vector<const physics::SimulationResult*>>(std::size_t first)> runs;
   std::vector<double> min_dwell_s;
   bool lateness_first = false;
+  // Drop the states that a lower bound shows cannot be the optimum: one whole path, timed
+  // pessimistically, bounds the least lateness (and, energy first, the least final lateness)
+  // from above, and a state whose best possible lateness (or final lateness) already exceeds
+  // it by more than the ties of the objective is never chosen. The same path is chosen as
+  // without (false: every Pareto state kept).
+  bool prune = true;
+  // The blocks of a candidate run (reach_blocks with the programme's braking and room), when
+  // the caller keeps them; may be empty or answer nullptr (then they are made here).
+  std::function<const RunReachBlocks*(const physics::SimulationResult*)> blocks;
 };
 
 // One section of a held-up follower's path: the run it drives, when it leaves (after any wait
@@ -82,6 +98,18 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
 // the train is ready (the leader's position never decreases).
 double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
                     double section_start_m, double braking_m_s2, double room_m);
+
+// A run's trace in blocks of `block` consecutive points: per block the farthest position the
+// line ahead must be clear to, s + room + v^2 / 2b from the section's start, and the earliest
+// time. It depends on the run, the braking and the room only, so a caller that meets the same
+// run many times keeps it.
+RunReachBlocks reach_blocks(const physics::SimulationResult& run, double braking_m_s2,
+                            double room_m, std::size_t block);
+// clear_from_s with the run's blocks made beforehand (reach_blocks of the same run, braking and
+// room): the same time, bit for bit.
+double clear_from_s(const physics::Trip& leader, const physics::SimulationResult& run,
+                    double section_start_m, double braking_m_s2, double room_m,
+                    const RunReachBlocks& blocks);
 
 // The follower of `plan` planned to leave its first stop at departure_s behind `leader` (a
 // whole-line trip on the clock). events (may be null) receives one entry per re-driven section.
