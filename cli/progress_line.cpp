@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace ecorail::cli {
@@ -33,8 +34,10 @@ std::string Progress::line(const std::string& label, const char* stage, int done
   if (total > 0) {
     std::snprintf(buf, sizeof buf, "%s: %s %d/%d, %.1f s", label.c_str(), stage, done, total,
                   elapsed_s);
-  } else {
+  } else if (done > 0) {
     std::snprintf(buf, sizeof buf, "%s: %s %d, %.1f s", label.c_str(), stage, done, elapsed_s);
+  } else {  // a stage that counts nothing (building the grids, the cruise polish)
+    std::snprintf(buf, sizeof buf, "%s: %s, %.1f s", label.c_str(), stage, elapsed_s);
   }
   std::string text = buf;
   if (total > 0 && done > 0 && done < total) {
@@ -54,7 +57,12 @@ void Progress::update(const char* stage, int done, int total) {
   // with a time-left estimate, and a ladder of two layers would otherwise show none between
   // its start and its end.
   const bool first_step = total > 1 && done == 1 && !first_step_drawn_;
-  if (!last && !first_step &&
+  // A new stage is drawn at once: a short stage (a cruise polish after a quick search, the
+  // searches of a short journey) is seen, not hidden by the 0.2 s between redraws.
+  const bool new_stage =
+      std::find(stages_drawn_.begin(), stages_drawn_.end(), stage) == stages_drawn_.end();
+  if (new_stage) stages_drawn_.emplace_back(stage);
+  if (!last && !first_step && !new_stage &&
       std::chrono::duration<double>(now - last_draw_).count() < kRedrawEvery_s) {
     return;
   }

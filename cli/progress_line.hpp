@@ -1,13 +1,15 @@
 // A progress line on stderr for long runs: "ecorail frontier: point 12/61, 8.1 s, about 33 s
 // left". It is shown only when stderr is a terminal and --quiet was not given, so logs, pipes
 // and scripts never see it; the line is rewritten in place (carriage return), at most every
-// 0.2 s, and cleared when the Progress ends. The estimate of time left is elapsed time times
-// the share of work not yet done, given only when the total is known.
+// 0.2 s (but at once when a stage is reported for the first time), and cleared when the Progress
+// ends. The estimate of time left is elapsed time times the share of work not yet done, given only
+// when the total is known.
 #pragma once
 
 #include <chrono>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "dp/progress_callback.hpp"
 
@@ -40,7 +42,8 @@ class Progress {
   bool enabled_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   std::size_t drawn_width_ = 0;
-  bool first_step_drawn_ = false;  // the first finished step of a count is always drawn
+  bool first_step_drawn_ = false;          // the first finished step of a count is always drawn
+  std::vector<std::string> stages_drawn_;  // each stage's first report is always drawn
   std::mutex mutex_;
 };
 

@@ -67,6 +67,7 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
   try {
     Progress progress("ecorail solve", quiet);
     progress.update("building the grids", 0, 0);
+    options.progress = progress.callback();
     sol = dp::solve_timing_journey(p.train, track, windows, options, journey.id);
   } catch (const dp::WindowInfeasibleError& e) {
     throw data::InputError(journey_path, 0,

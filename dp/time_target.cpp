@@ -218,6 +218,7 @@ TimeSearchResult search_for_time(const SectionEngine& engine, double target,
   };
   // A converged run's long cruise is polished (only ever replaced by a cheaper run in time).
   auto polish = [&] {
+    report_progress(options.progress, "cruise polish", 0, 0);
     out.cruise_polish =
         polish_cruise(engine, target, options.tolerance_s, options.cruise_polish, out.run);
   };

@@ -13,13 +13,16 @@
 #
 # Environment: TRAINS="A B" limits the trains (file names without .json, default: all of
 # TTOBENCH_DIR/trains), TRACKS="x y" the tracks, JOURNEYS=0 leaves the journeys out,
-# JOURNEY_MATCH='glob' keeps the journeys whose id matches, TRACK_RUNS=0 leaves the track rows out.
+# JOURNEY_MATCH='glob' keeps the journeys whose id matches, TRACK_RUNS=0 leaves the track rows out,
+# TIME_LIMIT=S stops a `solve` after S seconds of wall time (default 600): its row then says
+# "stopped at the time limit" and carries no figures.
 set -euo pipefail
 bin=${1:?usage: ttobench_table.sh ECORAIL [TTOBENCH_DIR] [flags...]}
 dir=${2:-$(dirname "$0")/../../shared/data/ttobench}
 shift $(($# >= 2 ? 2 : 1))
 flags=("$@")
 repo=$(cd "$(dirname "$0")/.." && pwd)
+limit=${TIME_LIMIT:-600}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -76,9 +79,13 @@ if [ "${TRACK_RUNS:-1}" != 0 ]; then
         t=$(python3 -c "print(round($tmin * (1 + $pct / 100), 3))")
         run="+$pct % ($t s)"
         start=$(now)
-        if "$bin" solve "${common[@]}" --from S0 --to "S$last" --time "$t" --dwell 0 --quiet \
-          --json "$tmp/run.json" >/dev/null 2>"$tmp/err.txt"; then
+        rc=0
+        timeout "$limit" "$bin" solve "${common[@]}" --from S0 --to "S$last" --time "$t" --dwell 0 \
+          --quiet --json "$tmp/run.json" >/dev/null 2>"$tmp/err.txt" || rc=$?
+        if [ "$rc" = 0 ]; then
           echo "| $id | $train | $run | $(figures "$tmp/run.json") | $(since "$start") |"
+        elif [ "$rc" = 124 ]; then
+          echo "| $id | $train | $run: stopped at the time limit ($limit s), no result | | | | | $(since "$start") |"
         else
           echo "| $id | $train | $run: failed ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
         fi
@@ -108,11 +115,19 @@ if [ "${JOURNEYS:-1}" != 0 ]; then
     objective=()
     case "$jid" in *gpops*) objective=(--objective net) ;; esac
     start=$(now)
-    if "$bin" solve --line "$dir/tracks/$track_id.json" --train "$train" --journey "$journey" \
-      "${objective[@]}" "${flags[@]}" --quiet --json "$tmp/run.json" >/dev/null 2>"$tmp/err.txt"; then
-      echo "| $track_id | $(basename "$train" .json) | journey $jid | $(figures "$tmp/run.json") | $(since "$start") |"
+    rc=0
+    timeout "$limit" "$bin" solve --line "$dir/tracks/$track_id.json" --train "$train" \
+      --journey "$journey" "${objective[@]}" "${flags[@]}" --quiet --json "$tmp/run.json" \
+      >/dev/null 2>"$tmp/err.txt" || rc=$?
+    name="$track_id | $(basename "$train" .json) | journey $jid"
+    if [ "$rc" = 0 ]; then
+      echo "| $name | $(figures "$tmp/run.json") | $(since "$start") |"
+    elif [ "$rc" = 124 ]; then
+      echo "| $name: stopped at the time limit ($limit s), no result | | | | | $(since "$start") |"
+    elif [ "$rc" = 2 ]; then
+      echo "| $name: refused ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
     else
-      echo "| $track_id | $(basename "$train" .json) | journey $jid: refused ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
+      echo "| $name: FAILED, exit $rc ($(why "$tmp/err.txt")) | | | | | $(since "$start") |"
     fi
   done
 fi
