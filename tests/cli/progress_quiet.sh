@@ -8,13 +8,7 @@ run=("$ecorail" frontier --from A6 --to A7 --tmax 100 --step 1 --no-cache)
 "${run[@]}" > out.txt 2> err.txt || { echo "FAIL: frontier"; fail=1; }
 if [ -s err.txt ]; then echo "FAIL: stderr not a terminal, yet:"; cat err.txt; fail=1; fi
 
-if command -v script > /dev/null; then
-  script -qec "${run[*]} 2>&1 >/dev/null" /dev/null > tty.txt || { echo "FAIL: frontier on a tty"; fail=1; }
-  grep -q "ecorail frontier: point [0-9]*/[0-9]*" tty.txt ||
-    { echo "FAIL: no progress on a terminal"; cat -v tty.txt; fail=1; }
-  script -qec "${run[*]} --quiet 2>&1 >/dev/null" /dev/null > quiet.txt ||
-    { echo "FAIL: frontier --quiet on a tty"; fail=1; }
-  if grep -q "ecorail frontier:" quiet.txt; then echo "FAIL: progress despite --quiet"; fail=1; fi
+if expect_tty_progress "${run[*]}" "ecorail frontier: point [0-9]*/[0-9]*" frontier; then
   # Policy ladders count layers; calibrations count the passes of each fit.
   script -qec "$ecorail policy --from A6 --to A7 --time 110 --out p.bin --lambda-ladder -5,0 2>&1 >/dev/null" \
     /dev/null > policy.txt || { echo "FAIL: policy on a tty"; fail=1; }
@@ -28,7 +22,5 @@ if command -v script > /dev/null; then
   script -qec "$ecorail calibrate --quiet --log $data/seed_profile_A6_A7_110s.csv --log $data/seed_profile_A6_A8_220s.csv --out c2.toml 2>&1 >/dev/null" \
     /dev/null > calibrate_quiet.txt || { echo "FAIL: calibrate --quiet on a tty"; fail=1; }
   if grep -q "ecorail calibrate:" calibrate_quiet.txt; then echo "FAIL: calibration progress despite --quiet"; fail=1; fi
-else
-  echo "note: util-linux script is missing; the terminal half is skipped"
 fi
 exit $fail

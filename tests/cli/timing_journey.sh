@@ -205,16 +205,7 @@ journey tty.json '[[0,0,0,0,0],[1500,0,90,null,null],[3000,150,190,0,0]]'
 tty_run="$ecorail solve --line track.data --train train.data --journey tty.json --ds 5 --dv 0.5"
 $tty_run > /dev/null 2> err.txt || { echo "FAIL: tty.json"; cat err.txt; fail=1; }
 if grep -q "ecorail solve:" err.txt; then echo "FAIL: progress on a file"; cat err.txt; fail=1; fi
-if command -v script > /dev/null; then
-  script -qec "$tty_run 2>&1 >/dev/null" /dev/null > tty.txt || { echo "FAIL: tty.json on a tty"; fail=1; }
-  grep -q "ecorail solve: price evaluation [0-9]" tty.txt ||
-    { echo "FAIL: no progress of a timing journey on a terminal"; cat -v tty.txt; fail=1; }
-  script -qec "$tty_run --quiet 2>&1 >/dev/null" /dev/null > tty_quiet.txt ||
-    { echo "FAIL: tty.json --quiet on a tty"; fail=1; }
-  if grep -q "ecorail solve:" tty_quiet.txt; then echo "FAIL: progress despite --quiet"; fail=1; fi
-else
-  echo "note: util-linux script is missing; the terminal check is skipped"
-fi
+expect_tty_progress "$tty_run" "ecorail solve: price evaluation [0-9]" timing_journey || true
 
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
 exit "$fail"

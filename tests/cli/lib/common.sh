@@ -34,3 +34,20 @@ expect_error() {
     rm -f $added
   fi
 }
+
+# expect_tty_progress "command line" "pattern" label: run on a terminal (faked with util-linux
+# `script`), stderr must show a progress line matching the pattern; with --quiet added, no line
+# starting "ecorail <command>:". Returns 1 (after a note) when `script` is missing.
+expect_tty_progress() {
+  local cmd="$1" pattern="$2" label="$3"
+  command -v script > /dev/null || { echo "note: util-linux script is missing; $label skipped"; return 1; }
+  local name
+  name=$(echo "$cmd" | awk '{print $2}')
+  script -qec "$cmd 2>&1 >/dev/null" /dev/null > "tty_$label.txt" || { echo "FAIL: $label on a tty"; fail=1; }
+  grep -q "$pattern" "tty_$label.txt" ||
+    { echo "FAIL: no progress of $label on a terminal"; cat -v "tty_$label.txt"; fail=1; }
+  script -qec "$cmd --quiet 2>&1 >/dev/null" /dev/null > "tty_quiet_$label.txt" ||
+    { echo "FAIL: $label --quiet on a tty"; fail=1; }
+  if grep -q "ecorail $name:" "tty_quiet_$label.txt"; then echo "FAIL: progress of $label despite --quiet"; fail=1; fi
+  return 0
+}
