@@ -133,7 +133,8 @@ def test_timing_journey_matches_cli(ttobench_files, run_cli, tmp_path, monkeypat
                             progress=lambda stage, done, total: calls.append((stage, done)))
     assert without_wall_times(again.to_dict()) == without_wall_times(cli)
     assert calls and calls[0][1] == 1
-    assert {stage for stage, _ in calls} <= {"price evaluation", "lambda evaluation"}
+    assert {stage for stage, _ in calls} <= {"price evaluation", "lambda evaluation",
+                                             "cruise polish"}
 
     def stop(stage, done, total):
         if done == 2:
