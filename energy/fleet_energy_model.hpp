@@ -7,8 +7,9 @@
 // far more than a sum per bin). Optional capabilities answer "none" by default: an exact
 // decomposition of the used energy over headways (the overlap models: the search then solves a
 // DP instead of annealing), per-train trips in the balance, the substation energy without any
-// reuse. Models are made by name in energy/model_registry.hpp; a new model implements this class
-// in its own files and adds one line there.
+// reuse, the maximisers of a relaxation (starts for the search). Models are made by name in
+// energy/model_registry.hpp; a new model implements this class in its own files and adds one line
+// there.
 #pragma once
 
 #include <cstdint>
@@ -80,9 +81,6 @@ struct FleetLowerBound {
   // traction, which its load flow may trade for each other).
   double substation_J = kNone;
   std::string name;  // e.g. "pair bound"
-  // Headway sequences that maximise the bound's relaxation (one per multiplier tried; their sums
-  // miss the span): starts for a search (fleet/relaxed_start.hpp). Empty when the bound has none.
-  std::vector<std::vector<int>> maximiser_headways_s;
   bool exists() const { return used_regen_J == used_regen_J || substation_J == substation_J; }
 };
 
@@ -166,6 +164,10 @@ class FleetEnergyModel {
   // or minus the substation energy); the search's two-train approximation.
   virtual std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const;
   virtual FleetLowerBound lower_bound() const;
+  // Headway sequences that maximise a relaxation of the problem (one per multiplier tried; their
+  // sums miss the span): starts for a search (fleet/relaxed_start.hpp). None by default; costs
+  // a DP, so the search asks only when it builds that start.
+  virtual std::vector<std::vector<int>> relaxation_maximisers_s() const { return {}; }
   // (bound - result) / result's substation energy, in the bound's own form.
   double gap_fraction(const FleetEvaluation& result, const FleetLowerBound& bound) const;
   // What no bound built on pairs of trains can come below for this timetable (0: not known).

@@ -154,19 +154,11 @@ FleetLowerBound PowerFlowModel::lower_bound() const {
     b.used_regen_J = window.bound_used_J;
     b.name = "window bound";
   }
-  // Starts for the search: the maximisers of the same relaxation with every headway in the core
-  // (at most four trains on the line, where the window terms are exact). The full relaxation's
-  // own maximisers are no starts: they crowd into the short headways it overstates.
-  if (window.applicable) {
-    FleetLimits core = limits();
-    core.headway_min_s = std::max(core.headway_min_s, window.core_min_s);
-    const long n = core.trains - 1;
-    if (core.headway_min_s <= core.headway_max_s && n * core.headway_min_s <= core.span_s) {
-      const WindowBound in_core = window_used_regen_bound(*profile_, core);
-      b.maximiser_headways_s = in_core.maximisers;
-    }
-  }
   return b;
+}
+
+std::vector<std::vector<int>> PowerFlowModel::relaxation_maximisers_s() const {
+  return window_core_maximisers(*profile_, limits());
 }
 
 double PowerFlowModel::pair_sum_J(const std::vector<int>& departures_s) const {

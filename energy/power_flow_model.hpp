@@ -43,6 +43,8 @@ class PowerFlowModel : public FleetEnergyModel {
   bool per_train_trips() const override { return true; }
   std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const override;
   FleetLowerBound lower_bound() const override;
+  // The window bound's maximisers in the core (energy/window_bound.hpp).
+  std::vector<std::vector<int>> relaxation_maximisers_s() const override;
   double pair_sum_J(const std::vector<int>& departures_s) const override;
   std::unique_ptr<TripPricer> make_trip_pricer(const std::vector<int>& departures_s,
                                                double screen_step_s, int threads) const override;

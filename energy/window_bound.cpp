@@ -133,6 +133,19 @@ struct Tables {
   double active_s = 0.0;
 };
 
+// L: from a departure to the end of the last bin with power, in whole seconds.
+int active_seconds(const PowerProfile& profile) {
+  const int tps = profile.ticks_per_second();
+  long last = 0;
+  for (const PowerBin& b : profile.bins()) last = std::max<long>(last, b.offset);
+  return static_cast<int>((last + tps) / tps);  // ceil((last + 1) / tps)
+}
+
+// The least headway of the core: four of them span L, so no train is ever fifth newest.
+int core_min_s(int active_s, const FleetLimits& p) {
+  return std::clamp((active_s + 3) / 4, p.headway_min_s, p.headway_max_s + 1);
+}
+
 // The least float not below v (-inf stays -inf).
 float float_up(double v) {
   float f = static_cast<float>(v);
@@ -148,12 +161,10 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
                     int threads) {
   Tables tb;
   const int tps = profile.ticks_per_second();
-  long last = 0;
-  for (const PowerBin& b : profile.bins()) last = std::max<long>(last, b.offset);
-  const int L = static_cast<int>((last + tps) / tps);  // ceil((last + 1) / tps)
+  const int L = active_seconds(profile);
   tb.active_s = L;
   const int hmin = p.headway_min_s, hmax = p.headway_max_s;
-  const int hc = std::clamp((L + 3) / 4, hmin, hmax + 1);
+  const int hc = core_min_s(L, p);
   tb.cells = make_cells(hmin, hmax, hc, std::max(1, o.short_cell_s));
   const Cells& cl = tb.cells;
   const int D = cl.D;
@@ -480,6 +491,17 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
   out.dp_transitions = work;
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+std::vector<std::vector<int>> window_core_maximisers(const PowerProfile& profile,
+                                                     const FleetLimits& p,
+                                                     const WindowBoundOptions& o) {
+  if (!not_applicable(profile, p).empty()) return {};
+  FleetLimits core = p;
+  core.headway_min_s = core_min_s(active_seconds(profile), p);
+  const long n = core.trains - 1;
+  if (core.headway_min_s > core.headway_max_s || n * core.headway_min_s > core.span_s) return {};
+  return window_used_regen_bound(profile, core, o).maximisers;
 }
 
 std::vector<double> window_relaxed_values_J(const PowerProfile& profile, const FleetLimits& p,

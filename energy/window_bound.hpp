@@ -31,7 +31,8 @@
 //     over the span as subgradient: mu is bracketed, then set where the bracket's tangents
 //     cross, until the best bound is within multiplier_tolerance of that crossing (no mu can
 //     give less).
-// The DP's maximisers (a headway sequence for each multiplier tried) are starts for a search.
+// The DP's maximisers (a headway sequence for each multiplier tried) are starts for a search
+// when every headway lies in the core (window_core_maximisers).
 #pragma once
 
 #include <limits>
@@ -77,6 +78,14 @@ struct WindowBound {
 
 WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimits& problem,
                                     const WindowBoundOptions& options = {});
+
+// The maximisers of the same relaxation with every headway in the core (at most four trains on
+// the line, where the window terms are exact): starts for a search (fleet/relaxed_start.hpp).
+// The full relaxation's own maximisers are no starts: they crowd into the short headways it
+// overstates. Empty when the bound does not apply or the core cannot hold the span.
+std::vector<std::vector<int>> window_core_maximisers(const PowerProfile& profile,
+                                                     const FleetLimits& problem,
+                                                     const WindowBoundOptions& options = {});
 
 // The relaxed objective of headway sequences (the sum of the window terms and charges on the
 // bound's grid, no multiplier): at least the used energy of each timetable on the model's grid,

@@ -243,9 +243,10 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   report("periodic regimes", 0.0, bound_used);
   bool relaxed = false;  // a start from the relaxation was added
   if (options.relaxed_start && !p.windowed()) {
-    const std::vector<int> h = relaxed_start_headways(bound.maximiser_headways_s, p);
-    if (!h.empty() && departures_problem(p, departures_from_headways(h)).empty()) {
-      starts.push_back(departures_from_headways(h));
+    const std::vector<int> h = relaxed_start_headways(model.relaxation_maximisers_s(), p);
+    std::vector<int> departures = h.empty() ? h : departures_from_headways(h);
+    if (!h.empty() && departures_problem(p, departures).empty()) {
+      starts.push_back(std::move(departures));
       start_temperature.push_back(options.reanneal_temperature);
       method_starts += "the bound's relaxation, ";
       relaxed = true;

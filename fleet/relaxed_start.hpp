@@ -1,12 +1,12 @@
 // A start for the headway search from the maximisers of a Lagrangian relaxation of the span
-// (energy::FleetLowerBound::maximiser_headways_s: the window bound's DP, one headway sequence per
-// multiplier tried). Each maximiser is the best sequence at its price of time, but their sums
-// miss the span, some above it and some below. Two of them on either side are joined, a prefix
-// of one to the suffix of the other, where the joined sum comes nearest the span (the window
-// terms of the relaxation then change only at the join), and the few seconds still missing are
-// spread one at a time over the headways, evenly along the day, within the headway limits.
-// Without a peak window only (one headway class); the annealing and polish that follow price the
-// junction and the spread seconds.
+// (energy::FleetEnergyModel::relaxation_maximisers_s; for the power-flow model the window
+// bound's DP in the core, one headway sequence per multiplier tried). Each maximiser is the best
+// sequence at its price of time, but their sums miss the span, some above it and some below. Two of
+// them on either side are joined, a prefix of one to the suffix of the other, where the joined sum
+// comes nearest the span (the window terms of the relaxation then change only at the join), and the
+// few seconds still missing are spread one at a time over the headways, evenly along the day,
+// within the headway limits. Without a peak window only (one headway class); the annealing and
+// polish that follow price the junction and the spread seconds.
 #pragma once
 
 #include <vector>

@@ -157,6 +157,52 @@ TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
   EXPECT_NE(r.summary.method.find("window bound"), std::string::npos) << r.summary.method;
 }
 
+// The maximisers in the core (the search's starts, window_core_maximisers): every headway lies
+// in the core, and each is the best all-core sequence of its own sum (a maximiser at any
+// multiplier beats every sequence of the same sum), checked against every such sequence. The
+// power-flow model offers them; a model without the capability offers none.
+TEST(WindowBound, CoreMaximisersAreTheBestSequencesOfTheirSum) {
+  const FleetProblem p = testing::small_fleet(5, 90, 150, 540);
+  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const WindowBound bound = window_used_regen_bound(fleet.profile(), limits_of(p));
+  ASSERT_TRUE(bound.applicable) << bound.why_not;
+  const int hc = bound.core_min_s, hmax = p.headway_max_s;
+  ASSERT_GT(hc, p.headway_min_s);
+  const std::vector<std::vector<int>> maximisers =
+      energy::window_core_maximisers(fleet.profile(), limits_of(p));
+  ASSERT_GE(maximisers.size(), 2u);
+  EXPECT_EQ(fleet.model().relaxation_maximisers_s(), maximisers);
+  energy::FleetLimits core = limits_of(p);
+  core.headway_min_s = hc;
+  bool above = false, below = false;
+  for (const std::vector<int>& m : maximisers) {
+    ASSERT_EQ(m.size(), 4u);
+    int sum = 0;
+    for (const int h : m) {
+      EXPECT_GE(h, hc);
+      EXPECT_LE(h, hmax);
+      sum += h;
+    }
+    above |= sum >= p.span_s, below |= sum <= p.span_s;
+    std::vector<std::vector<int>> same_sum;
+    for (int a = hc; a <= hmax; ++a)
+      for (int b = hc; b <= hmax; ++b)
+        for (int c = hc; c <= hmax; ++c)
+          if (const int d = sum - a - b - c; d >= hc && d <= hmax) same_sum.push_back({a, b, c, d});
+    const double own = window_relaxed_values_J(fleet.profile(), core, {m}).front();
+    const std::vector<double> others = window_relaxed_values_J(fleet.profile(), core, same_sum);
+    const double best = *std::max_element(others.begin(), others.end());
+    EXPECT_GE(own, best - 1e-7 * best - 1e-3) << "maximiser of sum " << sum;
+  }
+  EXPECT_TRUE(above && below) << "the maximisers' sums bracket the span";
+  EnergyModelOptions overlap = tenth_of_a_second();
+  overlap.model = "overlap";
+  EXPECT_TRUE(TestFleet(testing::small_pattern().trip, p, overlap)
+                  .model()
+                  .relaxation_maximisers_s()
+                  .empty());
+}
+
 TEST(WindowBound, NotApplicableWithSectionsOrPeakClasses) {
   const FleetProblem p = testing::small_fleet(4, 80, 140, 330);
   EnergyModelOptions o = tenth_of_a_second();
