@@ -9,6 +9,23 @@
 
 namespace ecorail::energy {
 
+void FleetBalance::substation_at(int train, int placed_at_s, const std::vector<int>& departures_s,
+                                 std::vector<MicroJoules>& substation_J) {
+  substation_J.resize(departures_s.size());
+  if (departures_s.empty()) return;
+  for (std::size_t i = 0; i < departures_s.size(); ++i) {
+    move(train, departures_s[i]);
+    substation_J[i] = substation();
+  }
+  move(train, placed_at_s);
+}
+
+MicroJoules FleetBalance::change_if_moved(int train, int placed_at_s, int departure_s) {
+  const MicroJoules change = move(train, departure_s);
+  move(train, placed_at_s);
+  return change;
+}
+
 MicroJoules FleetBalance::substation_change_if(int, const physics::Trip&) const {
   throw std::logic_error("this model's balance lays one trip under every train");
 }

@@ -60,6 +60,16 @@ class FleetBalance {
   // Moves one placed train; returns the change of the substation energy (< 0: better).
   virtual MicroJoules move(int train, int departure_s) = 0;
   virtual MicroJoules substation() const = 0;
+  // The substation energy with `train` (placed at placed_at_s) at each of `departures_s`, the
+  // rest as placed, into substation_J; the train is left at placed_at_s. Default: a move to
+  // each and back; a model may price them without moving (the polish tries a window of
+  // departures per train).
+  virtual void substation_at(int train, int placed_at_s, const std::vector<int>& departures_s,
+                             std::vector<MicroJoules>& substation_J);
+  // The change of the substation energy that move(train, departure_s) would make, the train
+  // left at placed_at_s (the annealing's proposals, most of them rejected). Default: the move
+  // and its undo.
+  virtual MicroJoules change_if_moved(int train, int placed_at_s, int departure_s);
   // Bins the model found no solution for (a balance with any is never taken as a result).
   virtual long unsolved_bins() const { return 0; }
   // Per-train trips (FleetEnergyModel::per_train_trips()): the change of the substation energy

@@ -62,6 +62,62 @@ MicroJoules PowerBalance::move(int train, int departure_s) {
   return used_ - before;
 }
 
+MicroJoules PowerBalance::gain_if_added(const PowerProfile& p, int departure_s) const {
+  const long base = static_cast<long>(departure_s) * ticks_per_second_;
+  if (departure_s < 0 || base + p.span_bins() > bins_)
+    throw std::out_of_range("a departure outside the power balance's horizon");
+  const MicroJoules* tb = traction_bins_.data();
+  const MicroJoules* rb = regen_bins_.data();
+  MicroJoules gain = 0;
+  for (const PowerBin& b : p.bins()) {
+    const std::size_t i = index(b.section, base + b.offset);
+    gain += std::min(tb[i] + b.traction, rb[i] + b.regen) - std::min(tb[i], rb[i]);
+  }
+  return gain;
+}
+
+void PowerBalance::used_at(int train, const std::vector<int>& departures_s,
+                           std::vector<MicroJoules>& used_J) {
+  if (!placed(train)) throw std::logic_error("used_at: the train is not placed");
+  // Every departure checked before the train is lifted: a throw leaves the balance as it was.
+  const long span = profiles_[train]->span_bins();
+  for (const int d : departures_s) {
+    if (d < 0 || static_cast<long>(d) * ticks_per_second_ + span > bins_)
+      throw std::out_of_range("a departure outside the power balance's horizon");
+  }
+  used_J.resize(departures_s.size());
+  const int kept = departure_s_[train];
+  add(train, kept, -1);
+  const MicroJoules without = used_;
+  for (std::size_t i = 0; i < departures_s.size(); ++i)
+    used_J[i] = without + gain_if_added(*profiles_[train], departures_s[i]);
+  add(train, kept, +1);
+}
+
+void PowerBalance::set_profile_all(const PowerProfile* profile) {
+  check_grid(*profile);
+  std::fill(traction_bins_.begin(), traction_bins_.end(), 0);
+  std::fill(regen_bins_.begin(), regen_bins_.end(), 0);
+  traction_ = regen_ = used_ = 0;
+  MicroJoules* tb = traction_bins_.data();
+  MicroJoules* rb = regen_bins_.data();
+  for (int k = 0; k < trains(); ++k) {
+    profiles_[k] = profile;
+    if (!placed(k)) continue;
+    const long base = static_cast<long>(departure_s_[k]) * ticks_per_second_;
+    if (base + profile->span_bins() > bins_)
+      throw std::out_of_range("a departure outside the power balance's horizon");
+    for (const PowerBin& b : profile->bins()) {
+      const std::size_t i = index(b.section, base + b.offset);
+      tb[i] += b.traction;
+      rb[i] += b.regen;
+    }
+    traction_ += profile->traction_total();
+    regen_ += profile->regen_total();
+  }
+  used_ = recount_used();
+}
+
 void PowerBalance::set_profile(int train, const PowerProfile* profile) {
   check_grid(*profile);
   if (!placed(train)) {
@@ -74,39 +130,55 @@ void PowerBalance::set_profile(int train, const PowerProfile* profile) {
   add(train, departure, +1);
 }
 
-MicroJoules PowerBalance::substation_change_if(int train, const PowerProfile& candidate) const {
-  check_grid(candidate);
-  const PowerProfile& now = *profiles_[train];
-  MicroJoules traction_change = candidate.traction_total() - now.traction_total();
-  if (!placed(train)) return traction_change;
-  const long base = static_cast<long>(departure_s_[train]) * ticks_per_second_;
-  if (base + candidate.span_bins() > bins_)
+MicroJoules PowerBalance::used_change_if_swapped(const PowerProfile& now, long base_now,
+                                                 const PowerProfile& next, long base_next) const {
+  if (base_next + next.span_bins() > bins_ || base_next < 0)
     throw std::out_of_range("a departure outside the power balance's horizon");
-  // Both bin lists are sorted by offset and hold one bin per offset, so one merge walk visits
-  // every affected bin once; a bin both profiles touch in the same section gets both changes.
+  // Both bin lists are sorted by offset and hold one bin per offset, so one merge walk by
+  // absolute bin visits every affected bin once; a bin both placements touch in the same
+  // section gets both changes.
   MicroJoules used_change = 0;
+  const MicroJoules* tb = traction_bins_.data();
+  const MicroJoules* rb = regen_bins_.data();
   const auto change_at = [&](std::size_t i, MicroJoules dt, MicroJoules dr) {
-    const MicroJoules t = traction_bins_[i], r = regen_bins_[i];
-    used_change += std::min(t + dt, r + dr) - std::min(t, r);
+    used_change += std::min(tb[i] + dt, rb[i] + dr) - std::min(tb[i], rb[i]);
   };
   const std::vector<PowerBin>& a = now.bins();
-  const std::vector<PowerBin>& b = candidate.bins();
+  const std::vector<PowerBin>& b = next.bins();
   std::size_t ia = 0, ib = 0;
   while (ia < a.size() || ib < b.size()) {
-    const bool take_a = ib == b.size() || (ia < a.size() && a[ia].offset <= b[ib].offset);
-    const bool take_b = ia == a.size() || (ib < b.size() && b[ib].offset <= a[ia].offset);
+    const long pa = ia < a.size() ? base_now + a[ia].offset : 0;
+    const long pb = ib < b.size() ? base_next + b[ib].offset : 0;
+    const bool take_a = ib == b.size() || (ia < a.size() && pa <= pb);
+    const bool take_b = ia == a.size() || (ib < b.size() && pb <= pa);
     if (take_a && take_b && a[ia].section == b[ib].section) {
-      change_at(index(a[ia].section, base + a[ia].offset), b[ib].traction - a[ia].traction,
+      change_at(index(a[ia].section, pa), b[ib].traction - a[ia].traction,
                 b[ib].regen - a[ia].regen);
     } else {
-      if (take_a)
-        change_at(index(a[ia].section, base + a[ia].offset), -a[ia].traction, -a[ia].regen);
-      if (take_b) change_at(index(b[ib].section, base + b[ib].offset), b[ib].traction, b[ib].regen);
+      if (take_a) change_at(index(a[ia].section, pa), -a[ia].traction, -a[ia].regen);
+      if (take_b) change_at(index(b[ib].section, pb), b[ib].traction, b[ib].regen);
     }
     if (take_a) ++ia;
     if (take_b) ++ib;
   }
-  return traction_change - used_change;
+  return used_change;
+}
+
+MicroJoules PowerBalance::substation_change_if(int train, const PowerProfile& candidate) const {
+  check_grid(candidate);
+  const PowerProfile& now = *profiles_[train];
+  const MicroJoules traction_change = candidate.traction_total() - now.traction_total();
+  if (!placed(train)) return traction_change;
+  const long base = static_cast<long>(departure_s_[train]) * ticks_per_second_;
+  return traction_change - used_change_if_swapped(now, base, candidate, base);
+}
+
+MicroJoules PowerBalance::used_change_if_moved(int train, int departure_s) const {
+  if (!placed(train)) throw std::logic_error("used_change_if_moved: the train is not placed");
+  if (departure_s < 0) throw std::out_of_range("a departure outside the power balance's horizon");
+  const PowerProfile& p = *profiles_[train];
+  return used_change_if_swapped(p, static_cast<long>(departure_s_[train]) * ticks_per_second_, p,
+                                static_cast<long>(departure_s) * ticks_per_second_);
 }
 
 FleetEnergy PowerBalance::energy() const {

@@ -29,12 +29,24 @@ class PowerBalance {
   void place_all(const std::vector<int>& departures_s);
   // Moves one placed train; returns the change of used regenerated energy.
   MicroJoules move(int train, int departure_s);
+  // The used regenerated energy with `train` at each of `departures_s` (the rest as placed),
+  // into used_J (one per departure); the balance is left as it was. The train is lifted once
+  // and each departure priced by one read-only pass over its bins (a move writes two), with the
+  // same integers a move would give.
+  void used_at(int train, const std::vector<int>& departures_s, std::vector<MicroJoules>& used_J);
+  // set_profile(k, profile) for every train k, laid afresh: traction and regen summed per bin
+  // over the trains first and the min taken once per bin (one pass per train, no min per
+  // train), the same integers as one train at a time.
+  void set_profile_all(const PowerProfile* profile);
   // Gives one train another profile (same grid and sections), keeping its departure: the
   // train's own pattern changes (per-train patterns) without rebuilding the balance.
   void set_profile(int train, const PowerProfile* profile);
   // The change of substation energy (traction - used) that set_profile(train, &candidate)
   // would make, computed without changing anything (so candidates can be priced in parallel).
   MicroJoules substation_change_if(int train, const PowerProfile& candidate) const;
+  // The change of used energy that move(train, departure_s) would make, computed without
+  // changing anything (one read-only pass; a move and its undo write four).
+  MicroJoules used_change_if_moved(int train, int departure_s) const;
 
   MicroJoules used() const { return used_; }
   MicroJoules traction() const { return traction_; }
@@ -56,6 +68,12 @@ class PowerBalance {
 
  private:
   void add(int train, int departure_s, int sign);
+  // The change of used energy that adding `profile` at `departure_s` would make (read only).
+  MicroJoules gain_if_added(const PowerProfile& profile, int departure_s) const;
+  // The change of used energy that replacing `now` placed at bin base_now by `next` at
+  // base_next would make (read only).
+  MicroJoules used_change_if_swapped(const PowerProfile& now, long base_now,
+                                     const PowerProfile& next, long base_next) const;
   void check_grid(const PowerProfile& profile) const;
   // Traction, regenerated and used energy summed over bins of one or several sections.
   struct BinSum {

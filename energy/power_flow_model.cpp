@@ -33,6 +33,14 @@ class PowerFlowBalance : public FleetBalance {
     return -balance_->move(train, departure_s);
   }
   MicroJoules substation() const override { return balance_->traction() - balance_->used(); }
+  MicroJoules change_if_moved(int train, int, int departure_s) override {
+    return -balance_->used_change_if_moved(train, departure_s);
+  }
+  void substation_at(int train, int, const std::vector<int>& departures_s,
+                     std::vector<MicroJoules>& substation_J) override {
+    balance_->used_at(train, departures_s, substation_J);
+    for (MicroJoules& s : substation_J) s = balance_->traction() - s;
+  }
   MicroJoules substation_change_if(int train, const physics::Trip& trip) const override {
     return balance_->substation_change_if(train, *make_profile(trip, model_.options()));
   }
@@ -69,9 +77,7 @@ class PowerFlowPricer : public TripPricer {
   void accept() override { current_ = std::move(candidate_); }
 
  private:
-  void lay(const PowerProfile* profile) {
-    for (int k = 0; k < balance_->trains(); ++k) balance_->set_profile(k, profile);
-  }
+  void lay(const PowerProfile* profile) { balance_->set_profile_all(profile); }
   const PowerFlowModel& model_;
   std::unique_ptr<PowerProfile> current_, candidate_;
   std::unique_ptr<PowerBalance> balance_;

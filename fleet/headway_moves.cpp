@@ -46,9 +46,7 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
     if (hi <= lo) continue;
     const int d = lo + static_cast<int>(draw(i, 1) % (hi - lo + 1));
     if (!allowed(p, t, k, d)) continue;
-    const int back = t[k];
-    mean += std::fabs(static_cast<double>(balance.move(k, d)));
-    balance.move(k, back);
+    mean += std::fabs(static_cast<double>(balance.change_if_moved(k, t[k], d)));
     ++samples;
   }
   const double t_start = temperature_scale * (samples > 0 ? std::max(1.0, mean / samples) : 1.0);
@@ -97,14 +95,13 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
     int d = lo + static_cast<int>(draw(counter, 1) % (hi - lo));
     if (d >= t[k]) ++d;  // never the current departure
     if (d > hi || !allowed(p, t, k, d)) continue;
-    const MicroJoules delta = balance.move(k, d);  // < 0: better
+    // Priced without moving: most proposals are rejected.
+    const MicroJoules delta = balance.change_if_moved(k, t[k], d);  // < 0: better
     ++out.moves;
     const bool accept = delta <= 0 || uniform01(draw(counter, 2)) <
                                           std::exp(-static_cast<double>(delta) / temperature);
-    if (!accept) {
-      balance.move(k, t[k]);
-      continue;
-    }
+    if (!accept) continue;
+    balance.move(k, d);
     t[k] = d;
     current += delta;
     if (current < out.substation) out.substation = current, out.departures = t;
@@ -115,6 +112,8 @@ RunResult anneal(FleetBalance& balance, const FleetProblem& p, const SearchPlan&
 long polish(FleetBalance& balance, const FleetProblem& p, std::vector<int>& t, int window,
             int sweeps, Clock::time_point t0, double limit_s, bool* stopped) {
   long moves = 0;
+  std::vector<int> candidates;  // departures tried for one train
+  std::vector<MicroJoules> substation;
   balance.place_all(t);
   for (int sweep = 0; sweep < sweeps && !*stopped; ++sweep) {
     bool improved = false;
@@ -127,15 +126,18 @@ long polish(FleetBalance& balance, const FleetProblem& p, std::vector<int>& t, i
       lo = std::max(lo, t[k] - window);
       hi = std::min(hi, t[k] + window);
       const int start = t[k];
+      candidates.clear();
+      for (int d = lo; d <= hi; ++d) {
+        if (d != start && allowed(p, t, k, d)) candidates.push_back(d);
+      }
+      balance.substation_at(k, start, candidates, substation);
+      moves += static_cast<long>(candidates.size());
       MicroJoules best = balance.substation();
       int best_d = start;
-      for (int d = lo; d <= hi; ++d) {
-        if (d == start || !allowed(p, t, k, d)) continue;
-        balance.move(k, d);
-        ++moves;
-        if (balance.substation() < best) best = balance.substation(), best_d = d;
+      for (std::size_t i = 0; i < candidates.size(); ++i) {
+        if (substation[i] < best) best = substation[i], best_d = candidates[i];
       }
-      balance.move(k, best_d);
+      if (best_d != start) balance.move(k, best_d);
       improved |= best_d != start;
       t[k] = best_d;
     }

@@ -4,6 +4,7 @@
 // train) and the sections model with one section equal to power-flow.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "energy/fleet_energy_model.hpp"
@@ -52,6 +53,73 @@ TEST(PowerBalance, AMillionMovesLeaveExactlyTheTotalsOfAFreshEvaluation) {
   EXPECT_EQ(moved->used(), moved->recount_used());
   EXPECT_EQ(moved->traction(), fresh->traction());
   EXPECT_GT(fresh->used(), 0);
+}
+
+// The searches price moves without making them (the annealing's proposals, the polish's window
+// of departures, a candidate trip under every train): each read-only price is exactly the
+// integer change the move makes, on one supply section and on two (bins of one offset in
+// different sections), for shifts that overlap the train's old bins and shifts that do not.
+TEST(PowerBalance, PricesWithoutMovingAreExactlyTheMovesChanges) {
+  const FleetProblem problem = testing::small_fleet(8, 60, 200, 7 * 101);
+  for (const bool sections : {false, true}) {
+    EnergyModelOptions o;
+    o.time_step_s = 0.1;
+    if (sections) o.model = "sections", o.section_boundaries_m = {2000.0};
+    const TestFleet models(small_pattern().trip, problem, o);
+    auto b = models.make_balance();
+    std::vector<int> t;
+    for (int k = 0; k < problem.trains; ++k) t.push_back(101 * k);
+    b->place_all(t);
+    std::mt19937_64 rng(11);
+    for (int m = 0; m < 300; ++m) {
+      const int k = static_cast<int>(rng() % problem.trains);
+      const int shift = static_cast<int>(rng() % 1201) - 600;     // beyond the trip time too
+      const int d = std::clamp(t[k] + shift, 0, problem.span_s);  // within the horizon
+      const MicroJoules priced = b->used_change_if_moved(k, d);
+      const MicroJoules before = b->used();
+      ASSERT_EQ(b->move(k, d), priced) << "sections " << sections << " move " << m;
+      ASSERT_EQ(b->used() - before, priced);
+      if (rng() % 2)
+        b->move(k, t[k]);  // undo half of them
+      else
+        t[k] = d;
+    }
+    EXPECT_EQ(b->used(), b->recount_used());
+    // A window of departures for one train, priced at once; the balance is left as it was.
+    const std::vector<int> window{0, std::max(0, t[3] - 1), std::min(t[3] + 30, problem.span_s),
+                                  problem.span_s};
+    std::vector<MicroJoules> used_at;
+    const MicroJoules kept = b->used();
+    b->used_at(3, window, used_at);
+    EXPECT_EQ(b->used(), kept);
+    EXPECT_THROW(b->used_at(3, {0, problem.span_s + 10000}, used_at), std::out_of_range);
+    EXPECT_EQ(b->used(), kept);
+    for (std::size_t i = 0; i < window.size(); ++i) {
+      b->move(3, window[i]);
+      EXPECT_EQ(used_at[i], b->used()) << "departure " << window[i];
+    }
+    b->move(3, t[3]);
+    // Every train on another profile (the same runs with half the regeneration and shorter
+    // dwells), laid afresh and one train at a time.
+    const auto& lib = testing::small_library();
+    std::vector<dp::SectionTimeSolve> solves;
+    for (std::size_t i = 0; i < lib.size(); ++i)
+      solves.push_back(lib.solve(i, small_pattern().pattern.running_times_s[i]));
+    std::vector<physics::TripSection> parts;
+    for (std::size_t i = 0; i < lib.size(); ++i)
+      parts.push_back({&lib.route(i), &solves[i].search.run.sim, i + 1 < lib.size() ? 23.0 : 0.0});
+    const PowerProfile other(physics::Trip(parts, 0.0, 0.5), o.ticks_per_second(),
+                             o.section_boundaries_m);
+    auto one_by_one = models.make_balance();
+    one_by_one->place_all(t);
+    for (int k = 0; k < problem.trains; ++k) one_by_one->set_profile(k, &other);
+    b->set_profile_all(&other);
+    EXPECT_EQ(b->used(), one_by_one->used());
+    EXPECT_EQ(b->traction(), one_by_one->traction());
+    EXPECT_EQ(b->regen(), one_by_one->regen());
+    EXPECT_EQ(b->used(), b->recount_used());
+    EXPECT_GT(b->used(), 0);
+  }
 }
 
 TEST(PowerBalance, UsedNeverExceedsRegenOrTractionInAnyBin) {
