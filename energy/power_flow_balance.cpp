@@ -130,10 +130,50 @@ void PowerBalance::set_profile(int train, const PowerProfile* profile) {
   add(train, departure, +1);
 }
 
+namespace {
+
+// sum over bins x in [from, to) of min(t[x] + dt, r[x] + dr) - min(t[x], r[x]), where dt, dr are
+// sign * the profile's dense bins at x - base.
+MicroJoules shifted_change(const MicroJoules* t, const MicroJoules* r, const MicroJoules* pt,
+                           const MicroJoules* pr, long from, long to, long base, int sign) {
+  MicroJoules change = 0;
+  for (long x = from; x < to; ++x) {
+    const MicroJoules dt = sign * pt[x - base], dr = sign * pr[x - base];
+    change += std::min(t[x] + dt, r[x] + dr) - std::min(t[x], r[x]);
+  }
+  return change;
+}
+
+}  // namespace
+
 MicroJoules PowerBalance::used_change_if_swapped(const PowerProfile& now, long base_now,
                                                  const PowerProfile& next, long base_next) const {
   if (base_next + next.span_bins() > bins_ || base_next < 0)
     throw std::out_of_range("a departure outside the power balance's horizon");
+  if (&now == &next && sections_ == 1 && !now.dense_traction().empty()) {
+    // One profile shifted (the annealing's proposals): by regions of the day, no merge. Bins
+    // only the earlier placement covers, only the later one, and both (where the change is the
+    // difference of two bins of the profile).
+    const MicroJoules* t = traction_bins_.data();
+    const MicroJoules* r = regen_bins_.data();
+    const MicroJoules* pt = now.dense_traction().data();
+    const MicroJoules* pr = now.dense_regen().data();
+    const long n = now.span_bins();
+    if (base_now == base_next) return 0;
+    const bool later = base_next > base_now;  // the new placement is the later one
+    const long early = later ? base_now : base_next, late = later ? base_next : base_now;
+    const int early_sign = later ? -1 : +1;  // the old placement leaves, the new one arrives
+    if (late >= early + n)
+      return shifted_change(t, r, pt, pr, early, early + n, early, early_sign) +
+             shifted_change(t, r, pt, pr, late, late + n, late, -early_sign);
+    MicroJoules change = shifted_change(t, r, pt, pr, early, late, early, early_sign);
+    for (long x = late; x < early + n; ++x) {
+      const MicroJoules dt = pt[x - base_next] - pt[x - base_now];
+      const MicroJoules dr = pr[x - base_next] - pr[x - base_now];
+      change += std::min(t[x] + dt, r[x] + dr) - std::min(t[x], r[x]);
+    }
+    return change + shifted_change(t, r, pt, pr, early + n, late + n, late, -early_sign);
+  }
   // Both bin lists are sorted by offset and hold one bin per offset, so one merge walk by
   // absolute bin visits every affected bin once; a bin both placements touch in the same
   // section gets both changes.

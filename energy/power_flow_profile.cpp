@@ -34,6 +34,19 @@ PowerProfile::PowerProfile(const physics::Trip& trip, int ticks_per_second,
     regen_total_ += bin.regen;
     bins_.push_back(bin);
   }
+  fill_dense();
+}
+
+void PowerProfile::fill_dense() {
+  dense_traction_.clear();
+  dense_regen_.clear();
+  if (sections_ != 1) return;
+  dense_traction_.assign(static_cast<std::size_t>(span_bins_), 0);
+  dense_regen_.assign(static_cast<std::size_t>(span_bins_), 0);
+  for (const PowerBin& b : bins_) {
+    dense_traction_[static_cast<std::size_t>(b.offset)] = b.traction;
+    dense_regen_[static_cast<std::size_t>(b.offset)] = b.regen;
+  }
 }
 
 PowerProfile PowerProfile::from_bins(int ticks_per_second, std::int32_t span_bins,
@@ -49,6 +62,7 @@ PowerProfile PowerProfile::from_bins(int ticks_per_second, std::int32_t span_bin
     p.regen_total_ += b.regen;
   }
   p.bins_ = std::move(bins);
+  p.fill_dense();
   return p;
 }
 

@@ -46,6 +46,10 @@ class PowerProfile {
   // Bins from the departure to past the arrival.
   std::int32_t span_bins() const { return span_bins_; }
   const std::vector<PowerBin>& bins() const { return bins_; }
+  // One supply section: traction and regen of every bin from the departure (zeros included),
+  // span_bins() of each, for loops that shift a whole profile without a merge; empty otherwise.
+  const std::vector<MicroJoules>& dense_traction() const { return dense_traction_; }
+  const std::vector<MicroJoules>& dense_regen() const { return dense_regen_; }
   MicroJoules traction_total() const { return traction_total_; }
   MicroJoules regen_total() const { return regen_total_; }
   const physics::Trip& trip() const { return trip_; }
@@ -55,7 +59,10 @@ class PowerProfile {
   int ticks_per_second_ = 1;
   int sections_ = 1;
   std::int32_t span_bins_ = 0;
+  void fill_dense();
+
   std::vector<PowerBin> bins_;
+  std::vector<MicroJoules> dense_traction_, dense_regen_;
   MicroJoules traction_total_ = 0;
   MicroJoules regen_total_ = 0;
 };
