@@ -1,7 +1,8 @@
 // Speed of the fleet timetable work on question 2.1's reference case (100 trains, span 63900 s,
 // headways 120-660 s, the reference pattern: 30 s dwells, optimal split of 1726 s running):
 // one full power-flow evaluation at the default 0.01 s step (laying 100 trains into an empty
-// balance), one incremental move of one train (and back), the exact overlap DPs (train ahead;
+// balance), one incremental move of one train (and back), a proposal moved and undone against
+// one priced without moving, the exact overlap DPs (train ahead;
 // either neighbour), the pair bound, and the whole power-flow headway optimisation with its
 // defaults. The pattern is built once, outside the timings.
 // Run: build/bench/bench_fleet --benchmark_min_time=1
@@ -81,6 +82,41 @@ void BM_IncrementalMove(benchmark::State& state) {
   state.SetItemsProcessed(2 * state.iterations());  // moves
 }
 BENCHMARK(BM_IncrementalMove)->Unit(benchmark::kMicrosecond);
+
+// What the annealing and the polish pay per proposal: a move of one train by `shift` seconds
+// and its undo (4 passes over the train's bins), against its price without moving
+// (used_change_if_moved: one read-only pass over the shifted profile's regions). Argument 0:
+// the annealing's 1 s grid, 1: the model's 0.01 s grid; second argument the shift.
+void BM_ProposalMoveAndUndo(benchmark::State& state) {
+  const auto model = power_flow().on_grid(state.range(0) == 0 ? 1.0 : 0.01);
+  auto balance = dynamic_cast<const energy::PowerFlowModel&>(*model).make_power_balance();
+  const auto t = uniform();
+  balance->place_all(t);
+  const int shift = static_cast<int>(state.range(1));
+  int k = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(balance->move(k, t[k] + shift));
+    benchmark::DoNotOptimize(balance->move(k, t[k]));
+    k = k % 98 + 1;
+  }
+  state.SetItemsProcessed(state.iterations());  // proposals
+}
+BENCHMARK(BM_ProposalMoveAndUndo)->Args({0, 7})->Args({1, 7})->Unit(benchmark::kMicrosecond);
+
+void BM_ProposalPriced(benchmark::State& state) {
+  const auto model = power_flow().on_grid(state.range(0) == 0 ? 1.0 : 0.01);
+  auto balance = dynamic_cast<const energy::PowerFlowModel&>(*model).make_power_balance();
+  const auto t = uniform();
+  balance->place_all(t);
+  const int shift = static_cast<int>(state.range(1));
+  int k = 1;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(balance->used_change_if_moved(k, t[k] + shift));
+    k = k % 98 + 1;
+  }
+  state.SetItemsProcessed(state.iterations());  // proposals
+}
+BENCHMARK(BM_ProposalPriced)->Args({0, 7})->Args({1, 7})->Unit(benchmark::kMicrosecond);
 
 void BM_OverlapExactDp(benchmark::State& state) {
   const auto variant =
