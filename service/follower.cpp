@@ -207,6 +207,9 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   }
   // Energy first: the least final lateness index is at most the path's; when it is also the
   // least any state can reach, the least final lateness in time is at most the path's too.
+  // A state that cannot reach a lateness index below the path's is chosen only when the least
+  // index is the path's, and then only within kLate_s of the least final lateness, which is at
+  // most the path's: beyond that its final lateness in time rules it out too.
   const Bound from_start = lower_bound(from, ready_s, 0.0);
   const bool time_bound =
       bounded && !recovery.lateness_first && from_start.lateness >= ub_lateness - 0.5;
@@ -214,7 +217,8 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     const Bound lb = lower_bound(k, ready, lateness);
     if (recovery.lateness_first) return lb.lateness > ub_lateness + kLate_s + 1e-6;
     if (lb.lateness > ub_lateness + 0.5) return true;
-    return time_bound && lb.final_late_s > std::max(ub_final_late_s, 0.0) + kLate_s + 1e-6;
+    const bool no_earlier_index = time_bound || lb.lateness >= ub_lateness - 0.5;
+    return no_earlier_index && lb.final_late_s > std::max(ub_final_late_s, 0.0) + kLate_s + 1e-6;
   };
   std::vector<std::vector<State>> stages(n + 1);
   stages[from].push_back({ready_s, 0.0, 0.0, -1, nullptr, ready_s, 0.0});
