@@ -132,6 +132,10 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
       for (double t : times_s) runs.push_back(&cache.get(k, t).sim);
       return runs;
     };
+    recover.held = [&](std::size_t k, double t) -> const physics::SimulationResult* {
+      const Run* r = cache.find(k, t);
+      return r != nullptr ? &r->sim : nullptr;
+    };
     // A run meets its time within the solver's tolerance, or is the flat-out run for a time
     // within the flat-out threshold of it; the cache answers within a millisecond.
     recover.run_time_slack_s = std::max(options.flat_out_threshold_s, dp::kTimeTolerance_s) + 0.002;

@@ -109,7 +109,8 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   struct Stage {
     std::vector<const physics::SimulationResult*> cands;
     std::vector<double> time_s, clear_s;
-    std::vector<char> live;  // solved, and neither absent nor the planned run again
+    std::vector<char> solved;  // its run is known (lazy: asked for, or held)
+    std::vector<char> live;    // solved, and neither absent nor the planned run again
     double section_start_m = 0.0;
     double planned_arrival_s = 0.0, next_departure_s = 0.0, least_dwell_s = 0.0;
     double min_run_s = 1e300;         // the least running time of the candidates
@@ -143,7 +144,7 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
       const physics::SimulationResult* r = i < got.size() ? got[i] : nullptr;
       const double least = least_run_s(d, c), bound = arrival_bound_s(d, c);
       d.cands[c] = r;
-      d.time_s[c] = -1e300;  // solved: never asked again
+      d.solved[c] = 1;
       if (r == nullptr || r == &plan.runs[k]) continue;
       d.live[c] = 1;
       clear_of(d, c);
@@ -163,8 +164,19 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     d.section_start_m = plan.trip.section_start_m(k);
     d.clear_s.assign(d.cands.size(), 0.0);
     d.live.assign(d.cands.size(), 0);
+    d.solved.assign(d.cands.size(), 0);
     for (std::size_t c = 0; c < d.cands.size(); ++c)
       if (d.cands[c] != nullptr) {
+        d.solved[c] = d.live[c] = 1;
+        clear_of(d, c);
+      }
+    if (lazy && recovery.held)
+      for (std::size_t c = 1; c < d.cands.size(); ++c) {
+        const physics::SimulationResult* r = recovery.held(k, d.time_s[c]);
+        if (r == nullptr) continue;
+        d.cands[c] = r;
+        d.solved[c] = 1;
+        if (r == &plan.runs[k]) continue;
         d.live[c] = 1;
         clear_of(d, c);
       }
@@ -175,11 +187,11 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
       std::size_t fastest = d.cands.size();
       for (std::size_t c = 1; c < d.cands.size(); ++c)
         if (fastest == d.cands.size() || d.time_s[c] < d.time_s[fastest]) fastest = c;
-      if (fastest < d.cands.size()) solve_lazily(k, {fastest});
+      if (fastest < d.cands.size() && !d.solved[fastest]) solve_lazily(k, {fastest});
     }
     d.earliest_arrival_s = 1e300;
     for (std::size_t c = 0; c < d.cands.size(); ++c) {
-      const bool unsolved = !d.live[c] && d.time_s[c] > -1e299;
+      const bool unsolved = !d.solved[c];
       if (!d.live[c] && !unsolved) continue;
       d.min_run_s = std::min(d.min_run_s, least_run_s(d, c));
       d.earliest_arrival_s =
@@ -291,7 +303,7 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
       const Stage& d = data[k];
       std::vector<std::size_t> wanted;
       for (std::size_t c = 0; c < d.cands.size(); ++c) {
-        if (d.live[c] || d.time_s[c] < -1e299) continue;
+        if (d.solved[c]) continue;
         const double rt = least_run_s(d, c);
         for (const State& s : stages[k]) {
           const double arr = std::max(s.ready_s + rt, d.planned_arrival_s);

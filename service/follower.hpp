@@ -81,6 +81,9 @@ struct FollowerRecovery {
                                                               const std::vector<double>& times_s)>
       solve;
   double run_time_slack_s = 0.0;
+  // Lazy: a run already at hand for a section's time (nullptr: none), taken as solved at no
+  // cost (its bounds are then exact from the start); may be empty.
+  std::function<const physics::SimulationResult*(std::size_t section, double time_s)> held;
   // The blocks of a candidate run (reach_blocks with the programme's braking and room), when
   // the caller keeps them; may be empty or answer nullptr (then they are made here).
   std::function<const RunReachBlocks*(const physics::SimulationResult*)> blocks;

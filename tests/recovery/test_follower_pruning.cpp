@@ -143,7 +143,8 @@ TEST(FollowerPruning, ThePrunedProgrammeChoosesThePathOfThePlainOne) {
 // objectives, it chooses the same runs, departures and waits as with every run given up front,
 // asks for fewer runs in all, and never asks for a run twice. With no slack (a run may be up to
 // the solver's tolerance faster than its time, so a bound can be contradicted) the answer is
-// the same too (the programme then solves every candidate and runs again).
+// the same too (the programme then solves every candidate and runs again), and so it is when
+// some runs are at hand from the start (held).
 TEST(FollowerPruning, TheLazyProgrammeChoosesThePathOfTheEagerOne) {
   const dp::SectionLibrary& lib = small_library();
   const double b = service::default_separation_braking_m_s2(lib.train());
@@ -155,9 +156,11 @@ TEST(FollowerPruning, TheLazyProgrammeChoosesThePathOfTheEagerOne) {
   for (int trial = 0; trial < 10; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
     const Case x = make_case(rng);
-    for (std::size_t k = 0; k < kSections; ++k) candidates += 2 * x.cands[k].size();
+    for (std::size_t k = 0; k < kSections; ++k) candidates += 4 * x.cands[k].size();
     for (const bool lateness_first : {false, true})
-      for (const double slack : {dp::kTimeTolerance_s + 0.002, 0.0}) {
+      for (const double slack : {dp::kTimeTolerance_s + 0.002, 0.0, -1.0}) {
+        // -1: slack as the first, and every other candidate's run at hand (held) from the start.
+        const bool with_held = slack < 0.0;
         SCOPED_TRACE(lateness_first ? "lateness first" : "energy first");
         SCOPED_TRACE("slack " + std::to_string(slack));
         service::FollowerRecovery eager;
@@ -169,7 +172,11 @@ TEST(FollowerPruning, TheLazyProgrammeChoosesThePathOfTheEagerOne) {
         };
         service::FollowerRecovery lazy = eager;
         lazy.runs = nullptr;
-        lazy.run_time_slack_s = slack;
+        lazy.run_time_slack_s = with_held ? dp::kTimeTolerance_s + 0.002 : slack;
+        if (with_held)
+          lazy.held = [&](std::size_t k, double t) -> const physics::SimulationResult* {
+            return std::llround(t * 1000.0) % 2000 < 1000 ? &run_for(k, t) : nullptr;
+          };
         lazy.run_times = [&](std::size_t first) {
           return std::vector<std::vector<double>>(x.cand_times_s.begin() + static_cast<long>(first),
                                                   x.cand_times_s.end());
@@ -196,7 +203,7 @@ TEST(FollowerPruning, TheLazyProgrammeChoosesThePathOfTheEagerOne) {
           EXPECT_EQ(got[k].line_wait_s, want[k].line_wait_s);
           if (want[k].line_wait_s > 0.0) ++held_up;
         }
-        if (slack > 0.0) {
+        if (slack != 0.0) {
           for (const auto& [key, count] : times_asked) {
             EXPECT_EQ(count, 1) << "section " << key.first << ", " << key.second << " ms";
             ++asked;
