@@ -10,31 +10,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <string>
 
 #include "data/line_loader.hpp"
 #include "data/route_builder.hpp"
 #include "data/train_io.hpp"
 #include "monte_carlo_days.hpp"
-#include "output/frontier_cache.hpp"
-#include "output/section_run_cache.hpp"
 #include "recovery/monte_carlo.hpp"
 
 namespace {
 
 using namespace ecorail;
 
-struct Setup {
-  std::unique_ptr<dp::SectionLibrary> library;
-  recovery::Plan plan;
-  std::unique_ptr<output::FileFrontierStore> frontiers;
-  std::unique_ptr<output::FileSectionRunStore> store;
-  std::unique_ptr<recovery::SectionRuns> runs;
-};
-
-Setup& setup() {
-  static Setup s = [] {
-    Setup x;
+bench::DaysSetup& setup() {
+  static bench::DaysSetup s = [] {
+    bench::DaysSetup x;
     const auto line = data::default_line();
     const auto train = data::default_train();
     const auto stops = data::stops_between(line, "A1", "A14");
@@ -48,18 +37,14 @@ Setup& setup() {
     journey.measure_marginals = false;
     x.plan = recovery::reference_plan(*x.library, stops, journey);
     const char* env = std::getenv("ECORAIL_BENCH_CACHE");
-    const std::string dir = env != nullptr && *env != 0 ? env : "test-cache/bench";
-    x.frontiers = std::make_unique<output::FileFrontierStore>(dir);
-    x.store = std::make_unique<output::FileSectionRunStore>(dir + "/section-runs");
-    x.runs = std::make_unique<recovery::SectionRuns>(*x.library, x.frontiers.get(), 1.0, 0.1,
-                                                     x.store.get());
+    x.make_runs(env != nullptr && *env != 0 ? env : "test-cache/bench");
     return x;
   }();
   return s;
 }
 
 void Days(benchmark::State& state, recovery::RecoveryPolicy policy) {
-  Setup& s = setup();
+  bench::DaysSetup& s = setup();
   recovery::MonteCarloOptions o;
   o.recovery = policy;
   const recovery::MonteCarlo mc(*s.library, s.plan, o, *s.runs);

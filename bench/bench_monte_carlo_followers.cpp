@@ -12,13 +12,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <string>
 
 #include "data/line_loader.hpp"
 #include "data/train_io.hpp"
 #include "monte_carlo_days.hpp"
 #include "output/frontier_cache.hpp"
-#include "output/section_run_cache.hpp"
 #include "recovery/monte_carlo.hpp"
 #include "recovery/plan_source.hpp"
 
@@ -26,12 +24,7 @@ namespace {
 
 using namespace ecorail;
 
-struct Setup {
-  std::unique_ptr<dp::SectionLibrary> library;
-  recovery::Plan plan;
-  std::unique_ptr<output::FileFrontierStore> frontiers;
-  std::unique_ptr<output::FileSectionRunStore> store;
-  std::unique_ptr<recovery::SectionRuns> runs;
+struct Setup : bench::DaysSetup {
   std::unique_ptr<recovery::MonteCarlo> driven, shortcut;
 };
 
@@ -48,11 +41,7 @@ Setup& setup() {
     recovery::PlanStops ps = recovery::read_plan_stops(line, csv);
     x.plan = ps.plan;
     x.library = recovery::plan_section_library(line, train, ps.stops, dp::SectionLibraryOptions{});
-    const auto dir = output::FileFrontierStore::default_directory();
-    x.frontiers = std::make_unique<output::FileFrontierStore>(dir);
-    x.store = std::make_unique<output::FileSectionRunStore>(dir / "section-runs");
-    x.runs = std::make_unique<recovery::SectionRuns>(*x.library, x.frontiers.get(), 1.0, 0.1,
-                                                     x.store.get());
+    x.make_runs(output::FileFrontierStore::default_directory());
     recovery::MonteCarloOptions o;
     x.driven = std::make_unique<recovery::MonteCarlo>(*x.library, x.plan, o, *x.runs);
     o.followers = recovery::FollowerModel::Shortcut;

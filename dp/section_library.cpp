@@ -213,14 +213,15 @@ void SectionLibrary::build_frontiers(std::size_t first, std::size_t last,
   side_by_side(first, last, [&](std::size_t i) { frontier(i, store); });
 }
 
-SectionTimeSolve SectionLibrary::solve(std::size_t i, double running_time_s) const {
-  return solve(i, running_time_s, nullptr);
+TimeSearchResult SectionLibrary::time_search(std::size_t i, double running_time_s,
+                                             LatticeRuns* memo) const {
+  return solve_for_time(engine(i), running_time_s, options_.search, {}, memo);
 }
 
 SectionTimeSolve SectionLibrary::solve(std::size_t i, double running_time_s,
                                        LatticeRuns* memo) const {
   SectionTimeSolve out;
-  out.search = solve_for_time(engine(i), running_time_s, options_.search, {}, memo);
+  out.search = time_search(i, running_time_s, memo);
   out.trip = physics::Trip({{&routes_[i], &out.search.run.sim, 0.0}}, 0.0, train_.regen_efficiency);
   return out;
 }

@@ -91,11 +91,13 @@ class SectionLibrary {
   void build_engines(std::size_t first, std::size_t last) const;
   void build_frontiers(std::size_t first, std::size_t last, FrontierStore* store) const;
 
-  // The energy-optimal run of section i in exactly running_time_s (re-simulated).
-  SectionTimeSolve solve(std::size_t i, double running_time_s) const;
-  // The same run, the lattice prices its search walks taken from (and kept in) memo: a caller
-  // that solves many times of one section keeps one memo for it (dp::LatticeRuns).
-  SectionTimeSolve solve(std::size_t i, double running_time_s, LatticeRuns* memo) const;
+  // The energy-optimal run of section i in exactly running_time_s (re-simulated). With a memo,
+  // the lattice prices its search walks are taken from (and kept in) it: a caller that solves
+  // many times of one section keeps one memo for it (dp::LatticeRuns); the run is the same.
+  SectionTimeSolve solve(std::size_t i, double running_time_s, LatticeRuns* memo = nullptr) const;
+  // The same search without laying its run out as a trip, for a caller that keeps only the run.
+  TimeSearchResult time_search(std::size_t i, double running_time_s,
+                               LatticeRuns* memo = nullptr) const;
 
   // What was built so far: engines, flat-out runs, frontiers computed, frontiers loaded.
   int engine_builds() const { return engine_builds_; }

@@ -124,15 +124,15 @@ void check_request(const dp::SectionLibrary& library, const Plan& plan, std::siz
 struct Request {
   const dp::SectionLibrary& library;
   const Plan& plan;
-  std::size_t train = 0, station = 0;
-  double delay_s = 0.0;
+  std::size_t train, station;
+  double delay_s;
   const DelayRecoveryOptions& options;
-  dp::FrontierStore* store = nullptr;
+  dp::FrontierStore* store;
   detail::TrainTimes times;
-  double late_departure_s = 0.0;
-  std::size_t back_on_time = 0;  // e: the earliest station back on time; > n: none
-  bool recoverable = false;
-  std::size_t last = 0;  // sections [station, last)
+  double late_departure_s;
+  std::size_t back_on_time;  // e: the earliest station back on time; > n: none
+  bool recoverable;
+  std::size_t last;  // sections [station, last)
   std::vector<double> rule_s;
 };
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <utility>
 
 #include "dp/time_target.hpp"
 #include "recovery/delay_steps.hpp"
@@ -35,9 +36,9 @@ std::unique_ptr<Run> RunCache::make(std::size_t k, double time_s) const {
     run->flat_out = true;
     return run;
   }
-  const dp::SectionTimeSolve sol = library_.solve(k, time_s, &lattice_[k]);
-  const physics::SimulationResult& sim = sol.search.run.sim;
-  if (!sol.search.converged || !dp::run_arrives(sim) ||
+  dp::TimeSearchResult search = library_.time_search(k, time_s, &lattice_[k]);
+  physics::SimulationResult& sim = search.run.sim;
+  if (!search.converged || !dp::run_arrives(sim) ||
       std::fabs(sim.running_time_s - time_s) > dp::kTimeTolerance_s) {
     char buf[300];
     std::snprintf(buf, sizeof buf,
@@ -48,8 +49,8 @@ std::unique_ptr<Run> RunCache::make(std::size_t k, double time_s) const {
                   time_s, sim.running_time_s);
     throw std::runtime_error(buf);
   }
-  run->sim = sim;
-  run->program = sol.search.run.program;
+  run->sim = std::move(sim);
+  run->program = std::move(search.run.program);
   return run;
 }
 

@@ -96,35 +96,107 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     if (clear <= ready) return ready;
     return ready + std::ceil((clear - ready + kWaitMargin_s) * 100.0) / 100.0;
   };
+  const bool lazy = recovery.run_times && recovery.solve;
   std::vector<std::vector<const physics::SimulationResult*>> extra;
-  if (first < n && recovery.runs) extra = recovery.runs(first);
-  // Each section's candidates, when each may leave (clear_from_s), the planned arrival, the next
-  // planned departure and the least dwell at its end.
+  std::vector<std::vector<double>> extra_times;
+  if (first < n && lazy)
+    extra_times = recovery.run_times(first);
+  else if (first < n && recovery.runs)
+    extra = recovery.runs(first);
+  // Each section's candidates (lazy: nullptr until solved, with their times), when each may
+  // leave (clear_from_s), the planned arrival, the next planned departure and the least dwell
+  // at its end.
   struct Stage {
     std::vector<const physics::SimulationResult*> cands;
-    std::vector<double> clear_s;
+    std::vector<double> time_s, clear_s;
+    std::vector<char> solved;  // its run is known (lazy: asked for, or held)
+    std::vector<char> live;    // solved, and neither absent nor the planned run again
+    double section_start_m = 0.0;
     double planned_arrival_s = 0.0, next_departure_s = 0.0, least_dwell_s = 0.0;
     double min_run_s = 1e300;         // the least running time of the candidates
     double earliest_arrival_s = 0.0;  // least of clear + running time over the candidates
+    // Lazy: bounds of an unsolved candidate's clear time plus running time (from the leader
+    // clear of the section's start, and of its end, at which every run comes to rest).
+    double start_clear_s = 0.0, end_clear_s = 0.0;
   };
   std::vector<Stage> data(n);
+  auto clear_of = [&](Stage& d, std::size_t c) {
+    const RunReachBlocks* kept = recovery.blocks ? recovery.blocks(d.cands[c]) : nullptr;
+    d.clear_s[c] = kept != nullptr
+                       ? clear_from_s(leader, *d.cands[c], d.section_start_m, b, room, *kept)
+                       : clear_from_s(leader, *d.cands[c], d.section_start_m, b, room);
+  };
+  auto least_run_s = [&](const Stage& d, std::size_t c) {
+    return d.live[c] ? d.cands[c]->running_time_s : d.time_s[c] - recovery.run_time_slack_s;
+  };
+  auto arrival_bound_s = [&](const Stage& d, std::size_t c) {
+    return std::max(d.start_clear_s + least_run_s(d, c), d.end_clear_s);
+  };
+  // Lazy: solves the candidates `which` of section k; false when a run contradicts a bound.
+  bool bounds_hold = true;
+  auto solve_lazily = [&](std::size_t k, const std::vector<std::size_t>& which) {
+    Stage& d = data[k];
+    std::vector<double> times;
+    for (std::size_t c : which) times.push_back(d.time_s[c]);
+    const std::vector<const physics::SimulationResult*> got = recovery.solve(k, times);
+    for (std::size_t i = 0; i < which.size(); ++i) {
+      const std::size_t c = which[i];
+      const physics::SimulationResult* r = i < got.size() ? got[i] : nullptr;
+      const double least = least_run_s(d, c), bound = arrival_bound_s(d, c);
+      d.cands[c] = r;
+      d.solved[c] = 1;
+      if (r == nullptr || r == &plan.runs[k]) continue;
+      d.live[c] = 1;
+      clear_of(d, c);
+      if (r->running_time_s < least - 1e-9 || d.clear_s[c] + r->running_time_s < bound - 1e-9)
+        bounds_hold = false;
+    }
+  };
   for (std::size_t k = from; k < n; ++k) {
     Stage& d = data[k];
     d.cands = {&plan.runs[k]};
+    d.time_s = {plan.runs[k].running_time_s};
     if (k >= first && k - first < extra.size())
       for (const physics::SimulationResult* r : extra[k - first])
-        if (r != nullptr && r != &plan.runs[k]) d.cands.push_back(r);
-    const double section_start = plan.trip.section_start_m(k);
-    d.clear_s.resize(d.cands.size());
+        if (r != nullptr && r != &plan.runs[k]) d.cands.push_back(r), d.time_s.push_back(0.0);
+    if (k >= first && k - first < extra_times.size())
+      for (double t : extra_times[k - first]) d.cands.push_back(nullptr), d.time_s.push_back(t);
+    d.section_start_m = plan.trip.section_start_m(k);
+    d.clear_s.assign(d.cands.size(), 0.0);
+    d.live.assign(d.cands.size(), 0);
+    d.solved.assign(d.cands.size(), 0);
+    for (std::size_t c = 0; c < d.cands.size(); ++c)
+      if (d.cands[c] != nullptr) {
+        d.solved[c] = d.live[c] = 1;
+        clear_of(d, c);
+      }
+    if (lazy && recovery.held)
+      for (std::size_t c = 1; c < d.cands.size(); ++c) {
+        const physics::SimulationResult* r = recovery.held(k, d.time_s[c]);
+        if (r == nullptr) continue;
+        d.cands[c] = r;
+        d.solved[c] = 1;
+        if (r == &plan.runs[k]) continue;
+        d.live[c] = 1;
+        clear_of(d, c);
+      }
+    if (lazy) {
+      d.start_clear_s = leader_clear_at(leader, d.section_start_m + room);
+      const double end = plan.runs[k].trace.empty() ? 0.0 : plan.runs[k].trace.back().s_m;
+      d.end_clear_s = leader_clear_at(leader, d.section_start_m + end - 1.0 + room);
+      std::size_t fastest = d.cands.size();
+      for (std::size_t c = 1; c < d.cands.size(); ++c)
+        if (fastest == d.cands.size() || d.time_s[c] < d.time_s[fastest]) fastest = c;
+      if (fastest < d.cands.size() && !d.solved[fastest]) solve_lazily(k, {fastest});
+    }
     d.earliest_arrival_s = 1e300;
     for (std::size_t c = 0; c < d.cands.size(); ++c) {
-      const RunReachBlocks* kept = recovery.blocks ? recovery.blocks(d.cands[c]) : nullptr;
-      d.clear_s[c] = kept != nullptr
-                         ? clear_from_s(leader, *d.cands[c], section_start, b, room, *kept)
-                         : clear_from_s(leader, *d.cands[c], section_start, b, room);
-      d.min_run_s = std::min(d.min_run_s, d.cands[c]->running_time_s);
+      const bool unsolved = !d.solved[c];
+      if (!d.live[c] && !unsolved) continue;
+      d.min_run_s = std::min(d.min_run_s, least_run_s(d, c));
       d.earliest_arrival_s =
-          std::min(d.earliest_arrival_s, d.clear_s[c] + d.cands[c]->running_time_s);
+          std::min(d.earliest_arrival_s,
+                   unsolved ? arrival_bound_s(d, c) : d.clear_s[c] + d.cands[c]->running_time_s);
     }
     d.planned_arrival_s = planned.stop(k + 1).arrival_s;
     d.next_departure_s = k + 1 < n ? planned.stop(k + 1).departure_s : 0.0;
@@ -188,6 +260,7 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
       const Stage& d = data[k];
       double best_ready = 1e300, best_energy = 1e300, best_late = 0.0;
       for (std::size_t c = 0; c < d.cands.size(); ++c) {
+        if (!d.live[c]) continue;
         const double rt = d.cands[c]->running_time_s;
         const double dep = std::max({ready, d.clear_s[c] + 0.061, d.planned_arrival_s - rt});
         const double arr = dep + rt;
@@ -207,6 +280,9 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   }
   // Energy first: the least final lateness index is at most the path's; when it is also the
   // least any state can reach, the least final lateness in time is at most the path's too.
+  // A state that cannot reach a lateness index below the path's is chosen only when the least
+  // index is the path's, and then only within kLate_s of the least final lateness, which is at
+  // most the path's: beyond that its final lateness in time rules it out too.
   const Bound from_start = lower_bound(from, ready_s, 0.0);
   const bool time_bound =
       bounded && !recovery.lateness_first && from_start.lateness >= ub_lateness - 0.5;
@@ -214,17 +290,40 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
     const Bound lb = lower_bound(k, ready, lateness);
     if (recovery.lateness_first) return lb.lateness > ub_lateness + kLate_s + 1e-6;
     if (lb.lateness > ub_lateness + 0.5) return true;
-    return time_bound && lb.final_late_s > std::max(ub_final_late_s, 0.0) + kLate_s + 1e-6;
+    const bool no_earlier_index = time_bound || lb.lateness >= ub_lateness - 0.5;
+    return no_earlier_index && lb.final_late_s > std::max(ub_final_late_s, 0.0) + kLate_s + 1e-6;
   };
   std::vector<std::vector<State>> stages(n + 1);
   stages[from].push_back({ready_s, 0.0, 0.0, -1, nullptr, ready_s, 0.0});
   for (std::size_t k = from; k < n; ++k) {
+    if (lazy) {
+      // The unsolved candidates that some state may drive: its move timed as if the run were
+      // clear at once and as fast as its time allows (the real move is no earlier and no less
+      // late) is not already hopeless.
+      const Stage& d = data[k];
+      std::vector<std::size_t> wanted;
+      for (std::size_t c = 0; c < d.cands.size(); ++c) {
+        if (d.solved[c]) continue;
+        const double rt = least_run_s(d, c);
+        for (const State& s : stages[k]) {
+          const double arr = std::max(s.ready_s + rt, d.planned_arrival_s);
+          const double next = k + 1 < n ? std::max(d.next_departure_s, arr + d.least_dwell_s) : arr;
+          const double lateness = add_lateness(k, s.lateness, arr - d.planned_arrival_s);
+          if (!bounded || !hopeless(k + 1, next, lateness)) {
+            wanted.push_back(c);
+            break;
+          }
+        }
+      }
+      if (!wanted.empty()) solve_lazily(k, wanted);
+    }
     const Stage& d = data[k];
     std::vector<State> next;
     next.reserve(stages[k].size() * d.cands.size());
     for (std::size_t si = 0; si < stages[k].size(); ++si) {
       const State& s = stages[k][si];
       for (std::size_t c = 0; c < d.cands.size(); ++c) {
+        if (!d.live[c]) continue;
         const Move m = move(k, c, s.ready_s);
         const double lateness = add_lateness(k, s.lateness, m.arrival_s - d.planned_arrival_s);
         if (bounded && hopeless(k + 1, m.ready_s, lateness)) continue;
@@ -271,6 +370,20 @@ std::vector<FollowerStep> follower_path(const ServicePlan& plan, const physics::
   // then the least energy. Otherwise: back on time at the earliest station, then (when it is
   // late at the last stop whatever it does) the least final lateness, within kLate_s, as the
   // late train runs flat out when no station absorbs its delay, then the least energy.
+  if (!bounds_hold) {
+    // A solved run broke a bound taken from its time: every candidate solved, and again.
+    FollowerRecovery eager = recovery;
+    eager.run_times = nullptr;
+    eager.solve = nullptr;
+    eager.runs = [&](std::size_t f) {
+      const std::vector<std::vector<double>> times = recovery.run_times(f);
+      std::vector<std::vector<const physics::SimulationResult*>> runs;
+      for (std::size_t j = 0; j < times.size(); ++j)
+        runs.push_back(recovery.solve(f + j, times[j]));
+      return runs;
+    };
+    return follower_path(plan, leader, planned, b, room, eager, from, first, ready_s);
+  }
   const std::vector<State>& final_states = stages[n];
   if (final_states.empty()) {
     // The bounds keep a state no worse than their path at every stop, so this is not expected;

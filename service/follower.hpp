@@ -68,6 +68,22 @@ struct FollowerRecovery {
   // it by more than the ties of the objective is never chosen. The same path is chosen as
   // without (false: every Pareto state kept).
   bool prune = true;
+  // Lazy candidates, used instead of `runs` when both are set: run_times(first) gives, for every
+  // section from `first` on (index 0 for `first`), the running times of its candidate runs, and
+  // solve(section, times) their runs (pointers valid for the whole drive_follower call; a run's
+  // running time is at least its time less run_time_slack_s). The programme asks solve only for
+  // the fastest candidate of each section and then for the candidates that some state which
+  // the bounds keep would drive: the same path as with every run solved up front (bounds are
+  // taken from the times where a run is not solved; should a solved run contradict its bound,
+  // every candidate is solved and the programme runs again).
+  std::function<std::vector<std::vector<double>>(std::size_t first)> run_times;
+  std::function<std::vector<const physics::SimulationResult*>(std::size_t section,
+                                                              const std::vector<double>& times_s)>
+      solve;
+  double run_time_slack_s = 0.0;
+  // Lazy: a run already at hand for a section's time (nullptr: none), taken as solved at no
+  // cost (its bounds are then exact from the start); may be empty.
+  std::function<const physics::SimulationResult*(std::size_t section, double time_s)> held;
   // The blocks of a candidate run (reach_blocks with the programme's braking and room), when
   // the caller keeps them; may be empty or answer nullptr (then they are made here).
   std::function<const RunReachBlocks*(const physics::SimulationResult*)> blocks;
