@@ -3,6 +3,7 @@
 #include "dp/golden_section.hpp"
 #include "dp/lambda_bracket.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -355,16 +356,26 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
     if (!staircase || p[m].control == Control::Coast || p[m].control == Control::MaxBrake) continue;
     Control at_limit = p[m].control;
     std::size_t after = m + 1;
-    if (at_limit == Control::Hold && p[after].control == Control::MaxTraction &&
-        p[after].from_m <= limit_rise_after_m(route, limit_m)) {
+    const double rise_m = limit_rise_after_m(route, limit_m);
+    // A hold at the limit that lasts past the limit's rise (the grid's acceleration there was
+    // short, and dropped) rides the limit at full traction and holds again after the rise,
+    // where the search puts it.
+    bool hold_after_rise = false;
+    if (at_limit == Control::Hold && after < p.size() && p[after].control == Control::MaxTraction &&
+        p[after].from_m <= rise_m) {
       at_limit = Control::MaxTraction;
       ++after;
+    } else if (at_limit == Control::Hold && rise_m < length_m - 2.0 &&
+               (after >= p.size() || p[after].from_m > rise_m + 2.0)) {
+      at_limit = Control::MaxTraction;
+      hold_after_rise = true;
     }
-    if (after >= p.size() && at_limit == Control::MaxTraction) continue;
+    if (after >= p.size() && at_limit == Control::MaxTraction && !hold_after_rise) continue;
     ControlProgram q(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     q.push_back({limit_m, at_limit});
+    if (hold_after_rise) q.push_back({rise_m + 1.0, Control::Hold});
     q.insert(q.end(), p.begin() + static_cast<std::ptrdiff_t>(after), p.end());
-    shape.dropped += static_cast<int>(p.size() - q.size());
+    shape.dropped += std::max(0, static_cast<int>(p.size()) - static_cast<int>(q.size()));
     p = std::move(q);
     ties.push_back({k, limit_m, route.speed_limit_ms(limit_m + 1e-6)});
   }

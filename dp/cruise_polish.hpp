@@ -51,7 +51,7 @@ struct CruisePolishOptions {
   double price_search_step_m = 1.0;
   double price_first_step_m = 40.0;
   int price_max_simulations = 600;
-  double price_time_tolerance_s = 0.2;
+  double price_time_tolerance_s = 0.02;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
