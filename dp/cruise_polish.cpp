@@ -615,10 +615,23 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
       time_hold = k;
   }
   const double c_best = current[shape->exit].from_m;
-  Candidate c = polisher.meet_time(current, time_hold, options.search_step_m);
-  if (c.program.empty()) return report;
-  // The result: the time met at the engine's fine step.
-  Candidate fine = polisher.meet_time(c.program, time_hold, engine.options().resim_step_m);
+  // The time is met by the last free hold's start, or, where that cannot meet it, by the last
+  // coast's start (the run is faster the later either starts).
+  std::vector<std::size_t> time_switches = {time_hold};
+  for (std::size_t k = n; k-- > hold;) {
+    if (searched[k] && base[k].control == Control::Coast && k + 1 < n && k != time_hold) {
+      time_switches.push_back(k);
+      break;
+    }
+  }
+  Candidate fine;
+  for (std::size_t k : time_switches) {
+    Candidate c = polisher.meet_time(current, k, options.search_step_m);
+    if (c.program.empty()) continue;
+    // The result: the time met at the engine's fine step.
+    fine = polisher.meet_time(c.program, k, engine.options().resim_step_m);
+    if (!fine.program.empty()) break;
+  }
   if (fine.program.empty() || !polisher.ends(fine.sim) ||
       std::abs(fine.sim.running_time_s - target_s) > tolerance_s || !(fine.cost_J < run.cost_J)) {
     return report;
