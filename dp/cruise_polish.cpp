@@ -486,7 +486,9 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
       auto f = [&](double x) {
         current[tie.coast].from_m = x;
         recent = polisher.simulate(current, price_step_m, recent);
-        const double braked = braked_m(recent, x, tie.limit_m);
+        // Braking counts from the phase before the coast on: a coast that starts too late
+        // lets the hold before it run into the limit's braking curve.
+        const double braked = braked_m(recent, lo_limit - 1.0, tie.limit_m);
         const double miss = braked > 0.0 ? -braked : tie.limit_ms - speed_at(recent, tie.limit_m);
         met = miss >= 0.0 && miss <= kTieSpeed_ms;
         const double cost = lagrangian_of(recent);
