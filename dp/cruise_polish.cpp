@@ -2,8 +2,8 @@
 
 #include "dp/golden_section.hpp"
 #include "dp/lambda_bracket.hpp"
-#include "dp/nelder_mead.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -59,9 +59,6 @@ constexpr int kMaxTimeSolves = 30;
 // The price search: its first step in log lambda, and at most this many prices.
 constexpr double kPriceBracketStep = 0.05;
 constexpr int kMaxPrices = 12;
-// Restarts of the simplex at one price, and the least gain (J) of one that earns another.
-constexpr int kMaxRestarts = 4;
-constexpr double kRestartGain_J = 1.0;
 // The narrowest bracket of a hold start worth another re-simulation.
 constexpr double kMinBracket_m = 1e-9;
 
@@ -292,6 +289,145 @@ class Polisher {
 
 }  // namespace
 
+namespace {
+
+// A coast into a lower limit, tied: its start is solved so that the run reaches the limit's
+// speed exactly at the limit's start (Howlett and Pudney's condition for a step down of the
+// limit: hold, then coast to meet the lower limit where it begins). coast is its index in the
+// program, limit_m where the lower limit begins.
+struct CoastTie {
+  std::size_t coast = 0;
+  double limit_m = 0.0;
+  double limit_ms = 0.0;
+};
+
+// Where the route's limit drops below the limit before it, in track order.
+std::vector<double> limit_drops_m(const physics::Route& route) {
+  std::vector<double> drops;
+  const auto& segs = route.segments();
+  for (std::size_t i = 1; i < segs.size(); ++i) {
+    if (segs[i].speed_limit_ms < segs[i - 1].speed_limit_ms - 1e-9)
+      drops.push_back(segs[i].start_m);
+  }
+  return drops;
+}
+
+// Where the limit rises again after s_m (the route's end when it does not).
+double limit_rise_after_m(const physics::Route& route, double s_m) {
+  const auto& segs = route.segments();
+  for (std::size_t i = 1; i < segs.size(); ++i) {
+    if (segs[i].start_m > s_m && segs[i].speed_limit_ms > segs[i - 1].speed_limit_ms + 1e-9) {
+      return segs[i].start_m;
+    }
+  }
+  return route.length_m();
+}
+
+// Every coast of the cruise that runs, through coasts and holds only, into a lower limit
+// becomes one coast tied to that limit's start: the phases between (the grid's staircase of
+// short coasts and holds above the lower limit) are dropped, and at the limit's start the run
+// holds the limit or, when the grid accelerates from it before the limit rises again, rides it
+// at full traction (the same run at the limit). Returns the ties in track order.
+std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Route& route) {
+  std::vector<CoastTie> ties;
+  const std::vector<double> drops = limit_drops_m(route);
+  ControlProgram& p = shape.program;
+  const double length_m = route.length_m();
+  for (std::size_t k = shape.hold + 1; k < p.size(); ++k) {
+    if (p[k].control != Control::Coast) continue;
+    double limit_m = -1.0;
+    for (double d : drops) {
+      if (d > p[k].from_m + 1.0 && d < length_m - 1.0) {
+        limit_m = d;
+        break;
+      }
+    }
+    if (limit_m < 0.0) continue;
+    std::size_t m = k;  // the phase in force at the limit's start
+    while (m + 1 < p.size() && p[m + 1].from_m <= limit_m) ++m;
+    // A coast that runs past the limit's start (the grid's hold begins a step or two after it)
+    // is tied as well when the next phase begins before the limit rises again.
+    if (m == k && m + 1 < p.size() && p[m + 1].from_m < limit_rise_after_m(route, limit_m)) ++m;
+    if (m == k || m + 1 >= p.size()) continue;
+    bool staircase = true;
+    for (std::size_t j = k + 1; j < m; ++j) {
+      staircase = staircase && (p[j].control == Control::Coast || p[j].control == Control::Hold);
+    }
+    if (!staircase || p[m].control == Control::Coast || p[m].control == Control::MaxBrake) continue;
+    Control at_limit = p[m].control;
+    std::size_t after = m + 1;
+    const double rise_m = limit_rise_after_m(route, limit_m);
+    // A hold at the limit that lasts past the limit's rise (the grid's acceleration there was
+    // short, and dropped) rides the limit at full traction and holds again after the rise,
+    // where the search puts it.
+    bool hold_after_rise = false;
+    if (at_limit == Control::Hold && after < p.size() && p[after].control == Control::MaxTraction &&
+        p[after].from_m <= rise_m) {
+      at_limit = Control::MaxTraction;
+      ++after;
+    } else if (at_limit == Control::Hold && rise_m < length_m - 2.0 &&
+               (after >= p.size() || p[after].from_m > rise_m + 2.0)) {
+      at_limit = Control::MaxTraction;
+      hold_after_rise = true;
+    }
+    if (after >= p.size() && at_limit == Control::MaxTraction && !hold_after_rise) continue;
+    ControlProgram q(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+    q.push_back({limit_m, at_limit});
+    if (hold_after_rise) q.push_back({rise_m + 1.0, Control::Hold});
+    q.insert(q.end(), p.begin() + static_cast<std::ptrdiff_t>(after), p.end());
+    shape.dropped += std::max(0, static_cast<int>(p.size()) - static_cast<int>(q.size()));
+    p = std::move(q);
+    ties.push_back({k, limit_m, route.speed_limit_ms(limit_m + 1e-6)});
+  }
+  shape.exit = p.size();
+  for (std::size_t k = p.size(); k-- > shape.hold;) {
+    if (p[k].control == Control::Hold) {
+      shape.exit = k + 1;
+      break;
+    }
+  }
+  return ties;
+}
+
+// The speed of a run at s_m (linear between trace points).
+double speed_at(const physics::SimulationResult& sim, double s_m) {
+  const auto& tr = sim.trace;
+  if (tr.empty()) return 0.0;
+  std::size_t lo = 0, hi = tr.size() - 1;
+  if (s_m <= tr[lo].s_m) return tr[lo].v_ms;
+  if (s_m >= tr[hi].s_m) return tr[hi].v_ms;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (tr[mid].s_m <= s_m ? lo : hi) = mid;
+  }
+  const double w = (s_m - tr[lo].s_m) / std::max(1e-12, tr[hi].s_m - tr[lo].s_m);
+  return tr[lo].v_ms + w * (tr[hi].v_ms - tr[lo].v_ms);
+}
+
+// How far a run brakes on [from_m, to_m) (0 when it does not).
+double braked_m(const physics::SimulationResult& sim, double from_m, double to_m) {
+  double first = -1.0;
+  for (const auto& p : sim.trace) {
+    if (p.s_m <= from_m) continue;
+    if (p.s_m >= to_m) break;
+    if (p.regime == physics::Regime::PartialBrake || p.regime == physics::Regime::FullBrake) {
+      first = p.s_m;
+      break;
+    }
+  }
+  return first < 0.0 ? 0.0 : to_m - first;
+}
+
+// The tied coasts' tolerances: a coast start is narrowed to this width, and a run that reaches
+// the limit this close below its speed meets it.
+constexpr double kTieWidth_m = 0.02;
+constexpr double kTieSpeed_ms = 1e-4;
+// Coordinate search: at most this many rounds over the free switch points at one price, and a
+// round that moves every point less than the search tolerance ends it.
+constexpr int kMaxRounds = 12;
+
+}  // namespace
+
 CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, double tolerance_s,
                                  const CruisePolishOptions& options, LambdaRun& run,
                                  const PolishEnd& end) {
@@ -306,79 +442,167 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   const double length_m = engine.route().length_m();
   std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, options);
   if (!shape) return report;
+  const double c0 = shape->program[shape->exit].from_m;
+  const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route());
   report.dropped_phases = shape->dropped;
   Polisher polisher(engine, run.start, target_s, tolerance_s, end, report);
   const std::size_t hold = shape->hold;
-  // Every switch point from the first hold on is searched (each hold's start sets its speed,
-  // each coast's start where it leaves), the final brake excepted: the stop's braking curve
-  // starts it, or the end speed when the run ends at a pinned speed.
+  const ControlProgram& base = shape->program;
+  const std::size_t n = base.size();
+  // What is not searched: a tied coast's start (solved), the phase at a lower limit's start
+  // (fixed there), and the last phase when the end solves it (the stop's braking curve, or the
+  // end speed of a run that ends at a pinned speed).
+  std::vector<char> searched(n, 0);
+  for (std::size_t k = hold; k < n; ++k) searched[k] = 1;
+  for (const CoastTie& tie : ties) searched[tie.coast] = searched[tie.coast + 1] = 0;
+  const bool end_solved = !end.moving || std::isfinite(end.pinned_speed_ms);
+  if (end_solved && base.back().control == Control::MaxBrake) searched[n - 1] = 0;
   std::vector<std::size_t> free;
-  for (std::size_t k = hold; k < shape->program.size(); ++k) {
-    if (k + 1 == shape->program.size() && shape->program[k].control == Control::MaxBrake &&
-        (!end.moving || std::isfinite(end.pinned_speed_ms))) {
-      break;
-    }
-    free.push_back(k);
+  for (std::size_t k = hold; k < n; ++k) {
+    if (searched[k]) free.push_back(k);
   }
-  const double floor_m = shape->program[hold - 1].from_m;
-  auto program_at = [&](const std::vector<double>& x, ControlProgram* p) {
-    *p = shape->program;
-    double previous = floor_m;
-    for (std::size_t i = 0; i < free.size(); ++i) {
-      if (!(x[i] > previous + 1.0 && x[i] < length_m - 1.0)) return false;
-      (*p)[free[i]].from_m = previous = x[i];
-    }
-    return free.back() + 1 >= p->size() || previous < (*p)[free.back() + 1].from_m - 1.0;
-  };
-  // One time price for the whole run: the switch points that minimise cost + lambda * time.
-  // At that minimum every hold's speed and every coasting point meet the same Lagrange
-  // condition (the marginal energy of a second saved is lambda everywhere), which a search of
-  // one switch point with another solving the time cannot reach when a coast runs into a lower
-  // limit (the cost has a kink there, and the optimum lies along it).
+  if (free.empty()) return report;
   const double price_step_m = std::max(options.search_step_m, options.price_search_step_m);
+  ControlProgram current = base;
   physics::SimulationResult recent;
-  auto lagrangian = [&](double lambda, const std::vector<double>& x, double* time_s) {
-    ControlProgram p;
-    if (!program_at(x, &p)) return kInf;
-    recent = polisher.simulate(p, price_step_m, recent);
-    if (!polisher.ends(recent)) return kInf;
-    if (time_s != nullptr) *time_s = recent.running_time_s;
-    return engine.energy_cost_J(recent) + lambda * recent.running_time_s;
+  double lambda = 0.0;
+  // The run of `current` (ties solved from the first switch that moved, first_changed, on):
+  // its Lagrangian cost + lambda * time, +inf when it does not end as asked.
+  auto lagrangian_of = [&](const physics::SimulationResult& sim) {
+    return polisher.ends(sim) ? engine.energy_cost_J(sim) + lambda * sim.running_time_s : kInf;
   };
-  std::vector<double> x(free.size());
-  for (std::size_t i = 0; i < free.size(); ++i) x[i] = shape->program[free[i]].from_m;
-  double first_step_m = options.price_first_step_m;
-  auto time_at_price = [&](double log_lambda) {
-    const double lambda = std::exp(log_lambda);
-    // Restarted from its best vertex with a fresh simplex while that still gains: a simplex
-    // that collapsed along the kink of a coast into a lower limit stops short of the optimum.
-    auto lagrangian_at = [&](const std::vector<double>& y) {
-      return lagrangian(lambda, y, nullptr);
-    };
-    NelderMeadResult m = nelder_mead_minimum(
-        lagrangian_at, x, first_step_m, options.search_tolerance_m, options.price_max_simulations);
-    for (int restart = 0; restart < kMaxRestarts && std::isfinite(m.f); ++restart) {
-      const NelderMeadResult again =
-          nelder_mead_minimum(lagrangian_at, m.x, options.price_first_step_m,
-                              options.search_tolerance_m, options.price_max_simulations);
-      const bool gained = again.f < m.f - kRestartGain_J;
-      if (again.f < m.f) m = again;
-      if (!gained) break;
+  auto evaluate = [&](std::size_t first_changed) {
+    for (const CoastTie& tie : ties) {
+      if (tie.coast < first_changed) continue;
+      // The coast starts as late as it can without braking before the lower limit: f falls
+      // as the coast starts later (the speed at the limit's start rises; once it would pass
+      // the limit's speed the run brakes, for longer the later it coasts).
+      const double lo_limit = current[tie.coast - 1].from_m + 1.0;
+      const double hi_limit = tie.limit_m - 1.0;
+      if (!(lo_limit < hi_limit)) return kInf;
+      double best = kInf, best_x = hi_limit;
+      physics::SimulationResult best_sim;
+      bool met = false;
+      auto f = [&](double x) {
+        current[tie.coast].from_m = x;
+        recent = polisher.simulate(current, price_step_m, recent);
+        // Braking counts from the phase before the coast on: a coast that starts too late
+        // lets the hold before it run into the limit's braking curve.
+        const double braked = braked_m(recent, lo_limit - 1.0, tie.limit_m);
+        const double miss = braked > 0.0 ? -braked : tie.limit_ms - speed_at(recent, tie.limit_m);
+        met = miss >= 0.0 && miss <= kTieSpeed_ms;
+        const double cost = lagrangian_of(recent);
+        if (cost < best) best = cost, best_x = x, best_sim = recent;
+        return miss;
+      };
+      const double x0 = std::min(std::max(current[tie.coast].from_m, lo_limit), hi_limit);
+      const double f0 = f(x0);
+      if (!met) {
+        double lo = lo_limit, hi = hi_limit, f_lo = 0.0, f_hi = 0.0;
+        bool bracketed = false;
+        // Bracket by doubling steps from the last solution (f falls with x).
+        for (double step = 8.0, xp = x0, fp = f0;; step *= 2.0) {
+          const double x = fp > 0.0 ? std::min(x0 + step, hi_limit) : std::max(x0 - step, lo_limit);
+          const double fx = f(x);
+          if (met) break;
+          if ((fp > 0.0) != (fx > 0.0)) {
+            lo = std::min(x, xp), hi = std::max(x, xp);
+            f_lo = x < xp ? fx : fp, f_hi = x < xp ? fp : fx;
+            bracketed = true;
+            break;
+          }
+          if (x <= lo_limit || x >= hi_limit) break;
+          xp = x, fp = fx;
+        }
+        if (bracketed && !met) {
+          LambdaBracket root(f, lo, f_lo, hi, f_hi, kMaxTimeSolves);
+          root.narrow([&] { return met; }, kTieWidth_m);
+        }
+      }
+      current[tie.coast].from_m = best_x;
+      if (!std::isfinite(best)) return kInf;
+      recent = std::move(best_sim);
     }
-    if (!std::isfinite(m.f)) return kInf;
-    x = m.x;
-    first_step_m = std::max(options.search_tolerance_m, 0.25 * options.price_first_step_m);
-    double time_s = kInf;
-    lagrangian(lambda, x, &time_s);
-    return time_s - target_s;
+    if (ties.empty() || ties.back().coast < first_changed) {
+      recent = polisher.simulate(current, price_step_m, recent);
+    }
+    return lagrangian_of(recent);
+  };
+  // The neighbours that bound a free switch point: the nearest switches before and after it
+  // that are not solved from it (a tied coast moves with the points before it).
+  auto is_tied = [&](std::size_t m) {
+    for (const CoastTie& tie : ties) {
+      if (tie.coast == m) return true;
+    }
+    return false;
+  };
+  auto bounds = [&](std::size_t i) {
+    const std::size_t k = free[i];
+    const double lo = current[is_tied(k - 1) ? k - 2 : k - 1].from_m + 1.0;
+    std::size_t m = k + 1;
+    if (m < n && is_tied(m)) ++m;
+    // A last phase that the end solves moves with every point before it: only the route's end
+    // bounds them.
+    const bool end_phase = m + 1 == n && !searched[m] && end.moving;
+    const double hi = m < n && !end_phase ? current[m].from_m - 1.0 : length_m - 1.0;
+    return std::make_pair(lo, hi);
+  };
+  // The free switch points' optimum under one price: rounds of golden-section searches, one
+  // switch point at a time along the track. Each search spans the whole interval between its
+  // neighbours in the first round, so the result does not hang on where the grid put the
+  // point; later rounds search a window around it that widens while the optimum sits on its
+  // edge. (With the coasts into lower limits tied, the cost has no kink left inside a window.)
+  std::vector<double> moved(free.size(), kInf);
+  auto optimise_at_price = [&] {
+    const int budget_end = report.simulations + options.price_max_simulations;
+    double value = evaluate(hold);
+    for (int round = 0; round < kMaxRounds && report.simulations < budget_end; ++round) {
+      bool still = true;
+      for (std::size_t i = 0; i < free.size(); ++i) {
+        const std::size_t k = free[i];
+        auto [lo_b, hi_b] = bounds(i);
+        if (!(lo_b < hi_b)) continue;
+        const double x_start = current[k].from_m;
+        double half = std::isfinite(moved[i]) ? std::max(options.price_first_step_m, 4.0 * moved[i])
+                                              : hi_b - lo_b;
+        GoldenSectionResult g;
+        auto at = [&](double x) {
+          current[k].from_m = x;
+          return evaluate(k);
+        };
+        while (true) {
+          const double a = std::max(lo_b, x_start - half), b = std::min(hi_b, x_start + half);
+          g = golden_section_minimum(at, a, b, options.search_tolerance_m, 60, true);
+          const bool on_edge = (g.best_x - a < 2.0 * options.search_tolerance_m && a > lo_b) ||
+                               (b - g.best_x < 2.0 * options.search_tolerance_m && b < hi_b);
+          if (!on_edge) break;
+          half *= 4.0;
+        }
+        if (g.best_f <= value) {
+          current[k].from_m = g.best_x;
+          value = g.best_f;
+        } else {
+          current[k].from_m = x_start;
+        }
+        value = evaluate(k);
+        moved[i] = std::abs(current[k].from_m - x_start);
+        still = still && moved[i] < options.search_tolerance_m;
+      }
+      if (still) break;
+    }
+    return value;
+  };
+  auto time_at_price = [&](double log_lambda) {
+    lambda = std::exp(log_lambda);
+    if (!std::isfinite(optimise_at_price())) return kInf;
+    return recent.running_time_s - target_s;
   };
   // The price whose optimum meets the time, to within price_time_tolerance_s; the last
-  // hundredths are then met by the first hold's speed alone (meet_time).
+  // hundredths are then met by the last free hold's speed alone (meet_time), after every tie.
   const double log_lambda0 = std::log(run.lambda > 0.0 ? run.lambda : 1.0);
   const double error0_s = time_at_price(log_lambda0);
   double error_s = error0_s;
   if (!(std::abs(error0_s) <= options.price_time_tolerance_s)) {
-    // The bracket starts at the price already searched (its optimum is not searched again).
     LambdaBracket price(
         [&](double log_lambda) {
           return error_s = log_lambda == log_lambda0 ? error0_s : time_at_price(log_lambda);
@@ -386,21 +610,30 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
         log_lambda0, kPriceBracketStep, kMaxPrices);
     price.narrow([&] { return std::abs(error_s) <= options.price_time_tolerance_s; });
   }
-  ControlProgram current;
-  if (!program_at(x, &current)) return report;
-  const double c0 = shape->program[shape->exit].from_m;
+  std::size_t time_hold = hold;
+  for (std::size_t k = hold; k + 1 < n; ++k) {
+    if (searched[k] && base[k].control == Control::Hold &&
+        base[k - 1].control == Control::MaxTraction)
+      time_hold = k;
+  }
   const double c_best = current[shape->exit].from_m;
-  double best_cost = kInf;
-  {
-    Candidate c = polisher.meet_time(current, hold, options.search_step_m);
-    if (!c.program.empty()) {
-      current = c.program;
-      best_cost = c.cost_J;
+  // The time is met by the last free hold's start, or, where that cannot meet it, by the last
+  // coast's start (the run is faster the later either starts).
+  std::vector<std::size_t> time_switches = {time_hold};
+  for (std::size_t k = n; k-- > hold;) {
+    if (searched[k] && base[k].control == Control::Coast && k + 1 < n && k != time_hold) {
+      time_switches.push_back(k);
+      break;
     }
   }
-  if (!std::isfinite(best_cost)) return report;
-  // The result: the best coasting point at the engine's fine step, the time met there.
-  Candidate fine = polisher.meet_time(current, hold, engine.options().resim_step_m);
+  Candidate fine;
+  for (std::size_t k : time_switches) {
+    Candidate c = polisher.meet_time(current, k, options.search_step_m);
+    if (c.program.empty()) continue;
+    // The result: the time met at the engine's fine step.
+    fine = polisher.meet_time(c.program, k, engine.options().resim_step_m);
+    if (!fine.program.empty()) break;
+  }
   if (fine.program.empty() || !polisher.ends(fine.sim) ||
       std::abs(fine.sim.running_time_s - target_s) > tolerance_s || !(fine.cost_J < run.cost_J)) {
     return report;

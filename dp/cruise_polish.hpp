@@ -4,18 +4,25 @@
 // TTOBench run, seventeen phases between 38 and 40 km), and each hold speed and coasting point
 // sits where the grid put it. The polish makes each cruise one hold: a run of phases shorter
 // than short_phase_m becomes one phase of the control it spends most distance in (a single
-// short phase is dropped and the phase before it goes on). Then, under one time price lambda,
-// every switch point from the first hold on (each hold's start, which sets its speed, each
-// coast's start, the start of a hold at a lower limit) is placed where the run's cost plus
-// lambda times its running time is least (Nelder-Mead, dp/nelder_mead.hpp, re-simulating at
-// price_search_step_m), and lambda is searched (the engine's one root search) until that run
-// meets the time within price_time_tolerance_s. At that optimum every hold meets the same
-// Lagrange condition: on level track with a constant efficiency every free hold has the same
-// speed, and a coast into a lower limit ends at the limit. The last hundredths of a second are
-// met by the first hold's speed alone (a secant on its start), at the search step and then at
-// the engine's fine step. The result is accepted only when it arrives, meets the time and
-// costs less than the run it replaces, so it never makes a result worse. An engine built
-// without cruise_as_hold is left as the grid has it.
+// short phase is dropped and the phase before it goes on). A coast that runs, through coasts
+// and holds only, into a lower limit becomes one coast tied to the limit's start: its start is
+// solved so that the run reaches the limit's speed exactly where the limit begins (Howlett and
+// Pudney's condition for a step down of the limit), and the run holds or rides the limit from
+// there. That removes the kink the cost has where a coast meets a lower limit's braking curve
+// and every switch point that moves the run only along it. Then, under one time price lambda,
+// every remaining switch point from the first hold on (each hold's start, which sets its speed,
+// each coast's start) is placed where the run's cost plus lambda times its running time is
+// least: rounds of golden-section searches (dp/golden_section.hpp), one switch point at a time
+// along the track, re-simulating at price_search_step_m; the first round searches each point
+// over the whole interval between its neighbours, so the result does not hang on where the
+// grid put it. lambda is searched (the engine's one root search) until that run meets the time
+// within price_time_tolerance_s. At that optimum every hold meets the same Lagrange condition:
+// on level track with a constant efficiency every free hold has the same speed. The last
+// hundredths of a second are met by the last free hold's speed alone (a secant on its start,
+// after every tied coast, so no tie moves), at the search step and then at the engine's fine
+// step. The result is accepted only when it arrives, meets the time and costs less than the
+// run it replaces, so it never makes a result worse. An engine built without cruise_as_hold is
+// left as the grid has it.
 #pragma once
 
 #include <functional>
@@ -33,15 +40,18 @@ struct CruisePolishOptions {
   double min_cruise_m = 2000.0;
   double short_phase_m = 200.0;         // phases inside the cruise shorter than this are dropped
   double search_half_width_m = 3000.0;  // (not used by the price search; kept for callers)
-  double search_tolerance_m = 0.5;      // the simplex stops when every vertex is this close
+  double search_tolerance_m = 0.5;      // each golden-section search narrows to this width
   double search_step_m = 0.5;           // RK4 step of the search's re-simulations
   // The search under one time price: the RK4 step of its re-simulations (at least
-  // search_step_m), the first simplex's size, its budget per price, and how close to the time
-  // the price's optimum must come before the first hold's speed alone closes the rest.
+  // search_step_m), the least half-width of a switch point's window after its first search
+  // (the window is also four times the point's last move, and widens while the optimum sits on
+  // its edge), the re-simulations it may start per price (a round under way is finished), and
+  // how close to the time the price's optimum must come before the last hold's speed alone
+  // closes the rest.
   double price_search_step_m = 1.0;
   double price_first_step_m = 40.0;
   int price_max_simulations = 600;
-  double price_time_tolerance_s = 0.2;
+  double price_time_tolerance_s = 0.02;
   // Checks every field; on failure writes one sentence naming the field into *error.
   bool IsValid(std::string* error) const;
 };
