@@ -63,6 +63,12 @@ struct DelayRecoveryOptions {
   // time (within the frontier), and the planned run.
   double follower_time_step_s = 2.0;
   double follower_slower_s = 10.0;
+  // Candidate runs solved lazily, only those a state the follower's programme keeps would drive
+  // (service::FollowerRecovery::solve; the same path), one section at a time: less CPU (the
+  // worst 600 s delays of bench/delay_worst_case.sh about 17 % less user time) but, on two idle
+  // cores, more wall time than solving every candidate up front with sections side by side
+  // (largest of 24 cases 11.1 s against 8.9 s), so off by default.
+  bool lazy_follower_solves = false;
   // Lateness first: minimise the total arrival lateness of the late train and its followers,
   // then the energy (the late train flat out up to the last section before the station where
   // it is back on time, that section as slow as keeps the total lateness least). false: the

@@ -116,29 +116,44 @@ void follow_the_late_train(const dp::SectionLibrary& library, const Plan& plan, 
     service::FollowerRecovery recover;
     recover.min_dwell_s = times.min_dwell_s;
     recover.lateness_first = options.lateness_first;
-    // The candidate runs are solved lazily: only those a state the programme keeps would drive
-    // (the same path as solving them all; kept in the cache for the followers behind).
-    recover.run_times = [&](std::size_t first) {
-      std::vector<std::vector<double>> grid =
+    // Every candidate run solved up front, sections side by side (kept in the cache for the
+    // followers behind).
+    recover.runs = [&](std::size_t first) {
+      const std::vector<std::vector<double>> grid =
           follower_run_times(times, options.follower_time_step_s, options.follower_slower_s, first);
-      grid.erase(grid.begin(), grid.begin() + static_cast<std::ptrdiff_t>(first));
-      return grid;
-    };
-    recover.solve = [&](std::size_t k, const std::vector<double>& times_s) {
-      std::vector<std::vector<double>> batch(n);
-      batch[k] = times_s;
-      cache.prefetch(batch);
-      std::vector<const physics::SimulationResult*> runs;
-      for (double t : times_s) runs.push_back(&cache.get(k, t).sim);
+      cache.prefetch(grid);
+      std::vector<std::vector<const physics::SimulationResult*>> runs;
+      for (std::size_t k = first; k < n; ++k) {
+        runs.emplace_back();
+        for (double t : grid[k]) runs.back().push_back(&cache.get(k, t).sim);
+      }
       return runs;
     };
-    recover.held = [&](std::size_t k, double t) -> const physics::SimulationResult* {
-      const Run* r = cache.find(k, t);
-      return r != nullptr ? &r->sim : nullptr;
-    };
-    // A run meets its time within the solver's tolerance, or is the flat-out run for a time
-    // within the flat-out threshold of it; the cache answers within a millisecond.
-    recover.run_time_slack_s = std::max(options.flat_out_threshold_s, dp::kTimeTolerance_s) + 0.002;
+    // Or lazily: only those a state the programme keeps would drive (the same path).
+    if (options.lazy_follower_solves) {
+      recover.run_times = [&](std::size_t first) {
+        std::vector<std::vector<double>> grid = follower_run_times(
+            times, options.follower_time_step_s, options.follower_slower_s, first);
+        grid.erase(grid.begin(), grid.begin() + static_cast<std::ptrdiff_t>(first));
+        return grid;
+      };
+      recover.solve = [&](std::size_t k, const std::vector<double>& times_s) {
+        std::vector<std::vector<double>> batch(n);
+        batch[k] = times_s;
+        cache.prefetch(batch);
+        std::vector<const physics::SimulationResult*> runs;
+        for (double t : times_s) runs.push_back(&cache.get(k, t).sim);
+        return runs;
+      };
+      recover.held = [&](std::size_t k, double t) -> const physics::SimulationResult* {
+        const Run* r = cache.find(k, t);
+        return r != nullptr ? &r->sim : nullptr;
+      };
+      // A run meets its time within the solver's tolerance, or is the flat-out run for a time
+      // within the flat-out threshold of it; the cache answers within a millisecond.
+      recover.run_time_slack_s =
+          std::max(options.flat_out_threshold_s, dp::kTimeTolerance_s) + 0.002;
+    }
     service::FollowerRun run = service::drive_follower(
         library, fplan, leader, departure, options.service, b, static_cast<int>(f), &events,
         options.recover_followers ? &recover : nullptr);
