@@ -87,11 +87,22 @@ BENCHMARK(BM_IncrementalMove)->Unit(benchmark::kMicrosecond);
 // and its undo (4 passes over the train's bins), against its price without moving
 // (used_change_if_moved: one read-only pass over the shifted profile's regions). Argument 0:
 // the annealing's 1 s grid, 1: the model's 0.01 s grid; second argument the shift.
+// The uniform timetable laid on the grid of argument 0 (the model lives as long as the balance).
+struct ProposalSetup {
+  std::unique_ptr<energy::FleetEnergyModel> model;
+  std::unique_ptr<energy::PowerBalance> balance;
+  std::vector<int> t = uniform();
+  explicit ProposalSetup(const benchmark::State& state)
+      : model(power_flow().on_grid(state.range(0) == 0 ? 1.0 : 0.01)),
+        balance(dynamic_cast<const energy::PowerFlowModel&>(*model).make_power_balance()) {
+    balance->place_all(t);
+  }
+};
+
 void BM_ProposalMoveAndUndo(benchmark::State& state) {
-  const auto model = power_flow().on_grid(state.range(0) == 0 ? 1.0 : 0.01);
-  auto balance = dynamic_cast<const energy::PowerFlowModel&>(*model).make_power_balance();
-  const auto t = uniform();
-  balance->place_all(t);
+  ProposalSetup setup(state);
+  auto& balance = setup.balance;
+  const auto& t = setup.t;
   const int shift = static_cast<int>(state.range(1));
   int k = 1;
   for (auto _ : state) {
@@ -104,10 +115,9 @@ void BM_ProposalMoveAndUndo(benchmark::State& state) {
 BENCHMARK(BM_ProposalMoveAndUndo)->Args({0, 7})->Args({1, 7})->Unit(benchmark::kMicrosecond);
 
 void BM_ProposalPriced(benchmark::State& state) {
-  const auto model = power_flow().on_grid(state.range(0) == 0 ? 1.0 : 0.01);
-  auto balance = dynamic_cast<const energy::PowerFlowModel&>(*model).make_power_balance();
-  const auto t = uniform();
-  balance->place_all(t);
+  ProposalSetup setup(state);
+  const auto& balance = setup.balance;
+  const auto& t = setup.t;
   const int shift = static_cast<int>(state.range(1));
   int k = 1;
   for (auto _ : state) {

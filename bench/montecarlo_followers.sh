@@ -22,12 +22,9 @@ day=${2:-${TMPDIR:-/tmp}/ecorail-day.csv}
 days=${3:-100}
 seed=${4:-1}
 shift $(($# < 4 ? $# : 4))
-if [ ! -s "$day" ]; then
-  echo "making the day plan $day (timetable optimise, 150 s time limit)" >&2
-  "$bin" timetable optimise --trains 240 --peak 7200:12600 --peak 43200:50400 \
-    --peak-headway 120:150 --offpeak-headway 300:660 --time-limit 150 --quiet --csv "$day" \
-    > /dev/null
-fi
+# shellcheck source=bench/day_plan.sh
+. "$(dirname "$0")/day_plan.sh"
+ensure_day_plan "$bin" "$day"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for mode in shortcut driven; do

@@ -16,6 +16,24 @@ namespace {
 
 using testing::small_pattern;
 
+// The small pattern's section runs laid out as a trip with these dwells and this regeneration
+// efficiency (the runs live as long as the library's cache: a static store here).
+physics::Trip small_pattern_trip(double dwell_s, double regen_efficiency) {
+  static const std::vector<dp::SectionTimeSolve> solves = [] {
+    const auto& lib = testing::small_library();
+    std::vector<dp::SectionTimeSolve> out;
+    for (std::size_t i = 0; i < lib.size(); ++i)
+      out.push_back(lib.solve(i, small_pattern().pattern.running_times_s[i]));
+    return out;
+  }();
+  const auto& lib = testing::small_library();
+  std::vector<physics::TripSection> sections;
+  for (std::size_t i = 0; i < lib.size(); ++i)
+    sections.push_back(
+        {&lib.route(i), &solves[i].search.run.sim, i + 1 < lib.size() ? dwell_s : 0.0});
+  return physics::Trip(sections, 0.0, regen_efficiency);
+}
+
 TEST(PowerProfile, BinsAddUpToTheTripLedgerForEveryStep) {
   const physics::Trip& trip = small_pattern().trip;
   for (int tps : {1, 3, 10, 100, 1000}) {
@@ -101,14 +119,7 @@ TEST(PowerBalance, PricesWithoutMovingAreExactlyTheMovesChanges) {
     b->move(3, t[3]);
     // Every train on another profile (the same runs with half the regeneration and shorter
     // dwells), laid afresh and one train at a time.
-    const auto& lib = testing::small_library();
-    std::vector<dp::SectionTimeSolve> solves;
-    for (std::size_t i = 0; i < lib.size(); ++i)
-      solves.push_back(lib.solve(i, small_pattern().pattern.running_times_s[i]));
-    std::vector<physics::TripSection> parts;
-    for (std::size_t i = 0; i < lib.size(); ++i)
-      parts.push_back({&lib.route(i), &solves[i].search.run.sim, i + 1 < lib.size() ? 23.0 : 0.0});
-    const PowerProfile other(physics::Trip(parts, 0.0, 0.5), o.ticks_per_second(),
+    const PowerProfile other(small_pattern_trip(23.0, 0.5), o.ticks_per_second(),
                              o.section_boundaries_m);
     auto one_by_one = models.make_balance();
     one_by_one->place_all(t);
@@ -142,14 +153,8 @@ TEST(PowerBalance, UsedNeverExceedsRegenOrTractionInAnyBin) {
 
 TEST(PowerBalance, WithoutRegenerationTheSubstationSuppliesAllTraction) {
   // One set of section runs laid out twice: regeneration efficiency 0.95 and 0.
-  const auto& lib = testing::small_library();
-  std::vector<dp::SectionTimeSolve> solves;
-  for (std::size_t i = 0; i < lib.size(); ++i)
-    solves.push_back(lib.solve(i, small_pattern().pattern.running_times_s[i]));
-  std::vector<physics::TripSection> sections;
-  for (std::size_t i = 0; i < lib.size(); ++i)
-    sections.push_back({&lib.route(i), &solves[i].search.run.sim, i + 1 < lib.size() ? 30.0 : 0.0});
-  const physics::Trip with(sections, 0.0, 0.95), without(sections, 0.0, 0.0);
+  const physics::Trip with = small_pattern_trip(30.0, 0.95),
+                      without = small_pattern_trip(30.0, 0.0);
   const FleetProblem problem = testing::small_fleet(4, 60, 250, 600);
   EnergyModelOptions o;
   o.time_step_s = 0.1;
