@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "cli/errors.hpp"
@@ -134,7 +135,8 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
         "the journey misses a stop or its running time (see the warnings); no output was written");
   }
 
-  const output::Timeline timeline = output::journey_timeline(sol, routes);
+  const output::Timeline timeline =
+      outputs.needs_timeline() ? output::journey_timeline(sol, routes) : output::Timeline{};
   output::JourneyLabels labels{stops, args.split, problem.ds_m, problem.dv_kmh,
                                sol.summary.threads};
   const nlohmann::json report = output::journey_report_json(
@@ -154,8 +156,9 @@ void run_journey(const ProblemOptions& problem, const JourneyArgs& args,
                                  {"running_time_s", sol.running_time_s},
                                  {"traction_energy_kJ", units::J_to_kJ(sol.traction_work_J)},
                                  {"regen_energy_kJ", units::J_to_kJ(sol.regen_J)}};
-  const physics::Trip trip = dp::journey_trip(sol, routes, 0.0, p.train.regen_efficiency);
-  write_outputs(outputs, report, timeline, title, summary, &trip, &p.line);
+  std::optional<physics::Trip> trip;
+  if (outputs.needs_trip()) trip = dp::journey_trip(sol, routes, 0.0, p.train.regen_efficiency);
+  write_outputs(outputs, report, timeline, title, summary, trip ? &*trip : nullptr, &p.line);
 }
 
 }  // namespace ecorail::cli

@@ -32,6 +32,11 @@ struct OutputOptions {
   std::string gtfs_lang = "en";
   std::string gtfs_dates;  // FIRST:LAST, YYYYMMDD:YYYYMMDD
   std::string gtfs_weekdays = "mon,tue,wed,thu,fri,sat,sun";
+  // What write_outputs reads besides the report: the timeline (profile CSV, XLSX, plot) and the
+  // trip (GTFS). A long journey's are built from a trace of a million points, so a command
+  // builds them only when asked for.
+  bool needs_timeline() const { return !csv.empty() || !xlsx.empty() || !plot.empty(); }
+  bool needs_trip() const { return !gtfs.empty(); }
 };
 
 // One output of a command, for check_output_targets: its flag, its path (empty: not asked

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "cli/errors.hpp"
@@ -100,7 +101,9 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
         "output was written");
   }
 
-  const output::Timeline timeline = output::journey_timeline(sol.journey, sol.routes);
+  const output::Timeline timeline = outputs.needs_timeline()
+                                        ? output::journey_timeline(sol.journey, sol.routes)
+                                        : output::Timeline{};
   const nlohmann::json report =
       output::timing_journey_report_json(sol, journey.id, problem.ds_m, problem.dv_kmh,
                                          run_provenance(p, problem, {{"journey", journey_path}}));
@@ -113,9 +116,12 @@ void run_timing_journey(const ProblemOptions& problem, const std::string& journe
                                  {"traction_energy_kJ", s.traction_energy_kJ},
                                  {"regen_energy_kJ", s.regen_energy_kJ},
                                  {"windows_met", sol.windows_met ? "true" : "false"}};
-  const physics::Trip trip = dp::journey_trip(
-      sol.journey, sol.routes, sol.parts.front().departure_s, p.train.regen_efficiency);
-  write_outputs(outputs, report, timeline, title, summary, &trip, &p.line);
+  std::optional<physics::Trip> trip;
+  if (outputs.needs_trip()) {
+    trip = dp::journey_trip(sol.journey, sol.routes, sol.parts.front().departure_s,
+                            p.train.regen_efficiency);
+  }
+  write_outputs(outputs, report, timeline, title, summary, trip ? &*trip : nullptr, &p.line);
 }
 
 }  // namespace ecorail::cli

@@ -29,8 +29,12 @@ void sweep(const StageGrid& grid, const TransitionTable& table, const PriceOf& p
            const std::vector<const SpeedBand*>& band_of, ValueFunction& value,
            const SpeedBand* end_band = nullptr) {
   const int last = grid.stage_count() - 1;
-  value.cost_to_go.assign(grid.total_nodes(), kInfeasible);
-  value.best.assign(grid.total_nodes(), 0);
+  // Not filled first: the sweep writes every node of stages 0 .. last - 1 (BigVector's resize
+  // leaves new elements unwritten), and the last stage is set here.
+  value.cost_to_go.resize(grid.total_nodes());
+  value.best.resize(grid.total_nodes());
+  std::fill(value.cost_to_go.begin() + grid.offset(last), value.cost_to_go.end(), kInfeasible);
+  std::fill(value.best.begin() + grid.offset(last), value.best.end(), std::uint8_t{0});
   value.cost_to_go[grid.offset(last)] = 0.0;  // at rest at the stop
   if (end_band != nullptr) {
     for (int j = 0; j < grid.node_count(last); ++j) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/huge_pages.hpp"
 #include "dp/stage_grid.hpp"
 #include "dp/stage_prices.hpp"
 #include "dp/transition_table.hpp"
@@ -23,8 +24,8 @@ struct ValueFunction {
   double lambda = 0.0;
   // With stage prices: the price of each transition out of stage i (empty: lambda everywhere).
   std::vector<double> stage_lambda;
-  std::vector<double> cost_to_go;  // per global node
-  std::vector<std::uint8_t> best;  // optimal control per global node
+  BigVector<double> cost_to_go;  // per global node
+  BigVector<std::uint8_t> best;  // optimal control per global node
 
   // Cost-to-go at stage i interpolated at speed v.
   double at(const StageGrid& grid, int i, double v_ms) const;

@@ -104,7 +104,7 @@ namespace {
 struct TraceState {
   double v_ms = 0.0, t_s = 0.0;
 };
-TraceState state_at(const std::vector<physics::TracePoint>& trace, double s) {
+TraceState state_at(const BigVector<physics::TracePoint>& trace, double s) {
   if (trace.empty()) return {};
   const auto it =
       std::lower_bound(trace.begin(), trace.end(), s,

@@ -8,7 +8,7 @@
 
 namespace ecorail::dp {
 
-std::vector<RegimeSpan> regime_spans(const std::vector<physics::TracePoint>& trace,
+std::vector<RegimeSpan> regime_spans(const BigVector<physics::TracePoint>& trace,
                                      double min_length_m) {
   std::vector<RegimeSpan> spans;
   for (std::size_t k = 1; k < trace.size(); ++k) {

@@ -32,7 +32,7 @@ inline constexpr double kHoldBand_ms = 0.25 / 3.6;
 
 // Consecutive trace steps with the same regime form a span; spans shorter than min_length_m
 // (integration slivers at switch points) are merged into the span before them.
-std::vector<RegimeSpan> regime_spans(const std::vector<physics::TracePoint>& trace,
+std::vector<RegimeSpan> regime_spans(const BigVector<physics::TracePoint>& trace,
                                      double min_length_m = 0.5);
 // "speed_hold" for a speed hold, else the regime's name (physics::regime_name).
 std::string_view span_name(const RegimeSpan& span);

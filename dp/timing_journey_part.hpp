@@ -33,7 +33,7 @@ inline bool finite(double x) {
 struct Passing {
   double t_s = NAN, v_ms = NAN;
 };
-Passing passing_at(const std::vector<physics::TracePoint>& trace, double s);
+Passing passing_at(const BigVector<physics::TracePoint>& trace, double s);
 
 // "timing point 3 (1500.0 m)" (i is 0-based).
 std::string point_name(int i, const TimingWindow& w);

@@ -46,7 +46,10 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
   table_.resize(static_cast<std::size_t>(grid.offset(last)) * physics::kControlCount);
   auto fill = [&](int node, int i, int c, const physics::Advance& adv) {
     Transition& t = table_[static_cast<std::size_t>(node) * physics::kControlCount + c];
-    if (adv.stalled) return;
+    if (adv.stalled) {
+      t = {0.0, 0.0, 0.0, -1};
+      return;
+    }
     t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
                                adv.traction_input_J, adv.regen_J);
     t.time_s = adv.time_s;

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/huge_pages.hpp"
 #include "dp/objective.hpp"
 #include "dp/stage_grid.hpp"
 #include "dp/stage_work.hpp"
@@ -26,11 +27,13 @@
 
 namespace ecorail::dp {
 
+// No initialisers: the table's build writes every entry, so the table's memory (hundreds of
+// megabytes on a long section) is first touched by the build's threads, not cleared before.
 struct Transition {
-  double energy_J = 0.0;
-  double time_s = 0.0;
-  double weight = 0.0;
-  std::int32_t lower = -1;  // -1: infeasible (the train would stop short)
+  double energy_J;
+  double time_s;
+  double weight;
+  std::int32_t lower;  // -1: infeasible (the train would stop short)
 };
 
 class TransitionTable {
@@ -51,7 +54,7 @@ class TransitionTable {
   long shared_entries() const { return shared_entries_; }
 
  private:
-  std::vector<Transition> table_;
+  BigVector<Transition> table_;
   ChunkDependencies deps_;
   int stage_classes_ = 0;
   long class_integrations_ = 0;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "base/huge_pages.hpp"
 #include "physics/control.hpp"
 #include "physics/energy_ledger.hpp"
 #include "physics/motion.hpp"
@@ -78,7 +79,7 @@ struct SimulationCheckpoint {
 inline constexpr std::size_t kCheckpointSteps = 256;
 
 struct SimulationResult {
-  std::vector<TracePoint> trace;
+  BigVector<TracePoint> trace;
   EnergyLedger energy;
   double running_time_s = 0.0;
   double end_position_m = 0.0;  // where the train came to rest (or route end if still moving)

@@ -328,8 +328,8 @@ PolicyLayer build_policy_layer(const dp::SectionEngine& engine, double lambda) {
   const dp::StageGrid& grid = engine.grid();
   PolicyLayer L;
   L.lambda_J_per_s = lambda;
-  L.control = value.best;
-  L.cost_to_go_J = value.cost_to_go;
+  L.control.assign(value.best.begin(), value.best.end());
+  L.cost_to_go_J.assign(value.cost_to_go.begin(), value.cost_to_go.end());
   L.time_to_go_s = time_to_go(engine, value);
   const int M = grid.total_nodes();
   L.regime.assign(M, static_cast<std::uint8_t>(physics::Regime::Coast));
