@@ -37,14 +37,13 @@ struct Cache {
   std::mutex mutex;
   std::vector<std::pair<void*, std::size_t>> blocks;  // (block, bytes), most recent last
   std::size_t bytes = 0;
-  ~Cache() {
-    for (const auto& [block, size] : blocks) std::free(block);
-  }
 };
 
+// Never destroyed: a static object holding a BigVector may be destroyed after any other static,
+// and its blocks come back here. What the cache holds at exit stays reachable through it.
 inline Cache& cache() {
-  static Cache c;
-  return c;
+  static Cache* c = new Cache;
+  return *c;
 }
 
 }  // namespace detail
