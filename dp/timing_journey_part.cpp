@@ -337,7 +337,7 @@ class PartSolver {
   // stop_s: the search ends at a run this close to the time (kArrivalTolerance_s unless the
   // caller trims more and checks), from x_after_guess_ with a first step of step (log price).
   Inner solve_arrival(const std::vector<double>& before, double stop_s = kArrivalTolerance_s,
-                      double step = 0.3) {
+                      double step = kFirstLogPriceStep) {
     Inner best;
     double best_abs = kInf;
     Inner floor_run;
@@ -413,14 +413,16 @@ class PartSolver {
       // search bisect jumps of the ragged running time (on the GPOPS-II case 4 of 15, ending
       // 0.514 s from the time instead of 0.521 s). Only where that trim does not meet the time
       // is the price searched on, to kArrivalTolerance_s, from where the first search ended.
-      Inner in = solve_arrival({}, kMaxTrim_s);
-      run = in.run;
-      if (in.ok) trim_arrival(run, 0.0);
+      auto search_and_trim = [&](double stop_s, double step) {
+        Inner in = solve_arrival({}, stop_s, step);
+        run = std::move(in.run);
+        if (in.ok) trim_arrival(run, 0.0);
+        return in;
+      };
+      Inner in = search_and_trim(kMaxTrim_s, kFirstLogPriceStep);
       if (in.ok && !arrival_at_floor_ &&
           !(std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s)) {
-        in = solve_arrival({}, kArrivalTolerance_s, kRetryLogPriceStep);
-        run = in.run;
-        if (in.ok) trim_arrival(run, 0.0);
+        in = search_and_trim(kArrivalTolerance_s, kRetryLogPriceStep);
       }
       ok = in.ok;
       lambda_after_ = std::exp(in.x_after);
@@ -961,8 +963,8 @@ class PartSolver {
       }
       return err;
     };
-    falling_root(g, std::log(std::max(1.0, before_[m])), 0.3, 0.0, 30.0, kOuterBudget,
-                 passing_tolerance_s());
+    falling_root(g, std::log(std::max(1.0, before_[m])), kFirstLogPriceStep, 0.0, 30.0,
+                 kOuterBudget, passing_tolerance_s());
     if (!best_ok) {
       notes_.push_back(format_text("the price search for %s found no run that meets it",
                                    point_name(p.index, windows_[p.index]).c_str()));
@@ -1016,8 +1018,9 @@ class PartSolver {
   static constexpr double kPassingTolerance_s = 0.25;
   static constexpr double kTrimTolerance_s = 0.5 * kZeroWidthTime_s;
   static constexpr int kInnerBudget = 40;
-  static constexpr double kRetryLogPriceStep =
-      0.01;  // first step of a search resumed near its root
+  // First steps (log price) of a price search: from a guess, and resumed near its root.
+  static constexpr double kFirstLogPriceStep = 0.3;
+  static constexpr double kRetryLogPriceStep = 0.01;
   static constexpr int kOuterBudget = 25;
   static constexpr int kMaxCycles = 6;          // of the searches for several binding points
   static constexpr int kNewtonIterations = 12;  // of meet_bindings_exactly
