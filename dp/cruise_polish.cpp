@@ -42,6 +42,7 @@ bool CruisePolishOptions::IsValid(std::string* error) const {
     return fail("cruise polish price_first_step_m must be finite and > 0");
   }
   if (price_max_simulations < 1) return fail("cruise polish price_max_simulations must be >= 1");
+  if (first_scan_points < 0) return fail("cruise polish first_scan_points must be >= 0");
   if (!(std::isfinite(price_time_tolerance_s) && price_time_tolerance_s > 0.0)) {
     return fail("cruise polish price_time_tolerance_s must be finite and > 0");
   }
@@ -68,11 +69,14 @@ struct CruiseShape {
   ControlProgram program;
   std::size_t hold = 0, exit = 0;
   int dropped = 0;
+  // The cruise starts with the grid's staircase down to a lower limit, made a hold and a coast.
+  bool steps_down = false;
 };
 
 // Drops the short phases inside the cruise (first hold to last hold). nullopt when the program
-// has no cruise to polish.
+// has no cruise to polish. drops_m: where the route's limit steps down, in track order.
 std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double length_m,
+                                        const std::vector<double>& drops_m,
                                         const CruisePolishOptions& options) {
   const std::size_t n = program.size();
   std::size_t first = n, last = n;
@@ -82,19 +86,47 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     last = k;
   }
   auto end_of = [&](std::size_t k) { return k + 1 < n ? program[k + 1].from_m : length_m; };
-  // The cruise starts at the first hold that is not short: the short holds and traction blips
-  // before it (the grid's staircase up to the cruise speed) are traction.
-  while (first < n && (program[first].control != Control::Hold ||
-                       end_of(first) - program[first].from_m < options.short_phase_m)) {
+  auto is_short_phase = [&](std::size_t k) {
+    return end_of(k) - program[k].from_m < options.short_phase_m;
+  };
+  // The cruise's first long hold: the short holds and traction blips before it (the grid's
+  // staircase up to the cruise speed) are traction.
+  while (first < n && (program[first].control != Control::Hold || is_short_phase(first))) {
     ++first;
   }
   if (first == n || first == 0 || first > last) return std::nullopt;
   if (last + 1 >= n) return std::nullopt;  // a cruise into the stop: nothing leaves it
-  const double cruise_m = program[last + 1].from_m - program[first].from_m;
+  // Whether a lower limit begins within [from_m, to_m + short_phase_m].
+  auto drop_near = [&](double from_m, double to_m) {
+    for (double d : drops_m) {
+      if (d > from_m && d <= to_m + options.short_phase_m) return true;
+    }
+    return false;
+  };
+  // On a metro section the grid reaches its cruise speed, then steps down in short coasts and
+  // holds (a blip of traction or braking among them) to a lower limit and rides it. That
+  // staircase, from the end of the last long traction phase, is a hold of free speed and a
+  // coast, which the search and the ties place: the cruise then starts there.
+  std::size_t start = first;
+  {
+    std::size_t s = first;
+    while (s > 1 && is_short_phase(s - 1)) --s;
+    double coast_m = 0.0, traction_m = 0.0;
+    for (std::size_t k = s; k < first; ++k) {
+      const double m = end_of(k) - program[k].from_m;
+      if (program[k].control == Control::Coast) coast_m += m;
+      if (program[k].control == Control::MaxTraction) traction_m += m;
+    }
+    if (s < first && program[s - 1].control == Control::MaxTraction && coast_m > traction_m &&
+        drop_near(program[s].from_m, program[first].from_m)) {
+      start = s;
+    }
+  }
+  const double cruise_m = program[last + 1].from_m - program[start].from_m;
   if (cruise_m < options.min_cruise_m) return std::nullopt;
   CruiseShape shape;
-  for (std::size_t k = 0; k < first; ++k) {
-    const bool short_phase = k > 0 && end_of(k) - program[k].from_m < options.short_phase_m;
+  for (std::size_t k = 0; k < start; ++k) {
+    const bool short_phase = k > 0 && is_short_phase(k);
     if (short_phase) {
       ++shape.dropped;
       continue;
@@ -103,12 +135,14 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     shape.program.push_back(program[k]);
   }
   if (shape.program.back().control != Control::MaxTraction) return std::nullopt;
-  shape.program.push_back(program[first]);
+  shape.program.push_back({program[start].from_m, Control::Hold});
   shape.hold = shape.program.size() - 1;
+  shape.steps_down = start < first;
   auto is_short = [&](std::size_t k) {
     return k <= last && end_of(k) - program[k].from_m < options.short_phase_m;
   };
-  for (std::size_t k = first + 1; k < n; ++k) {
+  for (std::size_t k = start; k < n; ++k) {
+    if (k == start && start == first) continue;  // the hold pushed above
     if (!is_short(k)) {
       if (shape.program.back().control != program[k].control) shape.program.push_back(program[k]);
       continue;
@@ -123,7 +157,11 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
       ++j;
     }
     shape.dropped += static_cast<int>(j - k);
-    if (j - k >= 2) {
+    // The staircase from the cruise's start down to a lower limit is one coast, to be tied.
+    if (k == start && start < first) {
+      shape.program.push_back({program[k].from_m, Control::Coast});
+      --shape.dropped;
+    } else if (j - k >= 2) {
       int dominant = 0;
       for (int c = 1; c < physics::kControlCount; ++c) {
         if (length_by_control[c] > length_by_control[dominant]) dominant = c;
@@ -365,6 +403,11 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
         p[after].from_m <= rise_m) {
       at_limit = Control::MaxTraction;
       ++after;
+      // Straight from that acceleration into a coast (the grid's hold after the rise was
+      // short, and merged): the hold is put back, and the search sets its speed (a hold that
+      // starts where the coast does is the run without it).
+      hold_after_rise = after < p.size() && p[after].control == Control::Coast &&
+                        rise_m < length_m - 2.0 && p[after].from_m > rise_m + 2.0;
     } else if (at_limit == Control::Hold && rise_m < length_m - 2.0 &&
                (after >= p.size() || p[after].from_m > rise_m + 2.0)) {
       at_limit = Control::MaxTraction;
@@ -440,7 +483,8 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
     return report;
   }
   const double length_m = engine.route().length_m();
-  std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, options);
+  std::optional<CruiseShape> shape =
+      cruise_shape(run.program, length_m, limit_drops_m(engine.route()), options);
   if (!shape) return report;
   const double c0 = shape->program[shape->exit].from_m;
   const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route());
@@ -562,7 +606,8 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
         const std::size_t k = free[i];
         auto [lo_b, hi_b] = bounds(i);
         if (!(lo_b < hi_b)) continue;
-        const double x_start = current[k].from_m;
+        const double origin_m = current[k].from_m;
+        double x_start = origin_m;
         double half = std::isfinite(moved[i]) ? std::max(options.price_first_step_m, 4.0 * moved[i])
                                               : hi_b - lo_b;
         GoldenSectionResult g;
@@ -570,6 +615,27 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
           current[k].from_m = x;
           return evaluate(k);
         };
+        // Where the cruise starts with a step down to a lower limit, the first search of a
+        // point looks at the whole interval first, on a scan of first_scan_points, and narrows
+        // around the best: over a descent into the lower limit the cost has more than one
+        // minimum in a point, and where the grid put the point need not be in the best one's
+        // basin. (On a long cruise the scan's start moved the coordinate search along a flat
+        // valley: two grids' starts then ended 0.011 % apart, so it is not done there.)
+        if (!std::isfinite(moved[i]) && shape->steps_down && options.first_scan_points > 0) {
+          // The scan's runs move the tied coasts with the point; they start again from where
+          // they were, so the search after the scan starts as it would without it.
+          const ControlProgram before_scan = current;
+          const int scan = options.first_scan_points;
+          double best_x = x_start;
+          for (int q = 1; q < scan; ++q) {
+            const double x = lo_b + (hi_b - lo_b) * q / scan;
+            const double f = at(x);
+            if (f < value) value = f, best_x = x;
+          }
+          current = before_scan;
+          current[k].from_m = x_start = best_x;
+          half = (hi_b - lo_b) / scan;
+        }
         while (true) {
           const double a = std::max(lo_b, x_start - half), b = std::min(hi_b, x_start + half);
           g = golden_section_minimum(at, a, b, options.search_tolerance_m, 60, true);
@@ -585,7 +651,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
           current[k].from_m = x_start;
         }
         value = evaluate(k);
-        moved[i] = std::abs(current[k].from_m - x_start);
+        moved[i] = std::abs(current[k].from_m - origin_m);
         still = still && moved[i] < options.search_tolerance_m;
       }
       if (still) break;

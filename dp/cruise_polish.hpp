@@ -4,7 +4,9 @@
 // TTOBench run, seventeen phases between 38 and 40 km), and each hold speed and coasting point
 // sits where the grid put it. The polish makes each cruise one hold: a run of phases shorter
 // than short_phase_m becomes one phase of the control it spends most distance in (a single
-// short phase is dropped and the phase before it goes on). A coast that runs, through coasts
+// short phase is dropped and the phase before it goes on). On a metro section the grid steps
+// down from the end of full traction to a lower limit in short coasts and holds; that
+// staircase becomes a hold (of free speed) and a coast. A coast that runs, through coasts
 // and holds only, into a lower limit becomes one coast tied to the limit's start: its start is
 // solved so that the run reaches the limit's speed exactly where the limit begins (Howlett and
 // Pudney's condition for a step down of the limit), and the run holds or rides the limit from
@@ -14,15 +16,16 @@
 // each coast's start) is placed where the run's cost plus lambda times its running time is
 // least: rounds of golden-section searches (dp/golden_section.hpp), one switch point at a time
 // along the track, re-simulating at price_search_step_m; the first round searches each point
-// over the whole interval between its neighbours, so the result does not hang on where the
-// grid put it. lambda is searched (the engine's one root search) until that run meets the time
-// within price_time_tolerance_s. At that optimum every hold meets the same Lagrange condition:
-// on level track with a constant efficiency every free hold has the same speed. The last
-// hundredths of a second are met by the last free hold's speed alone (a secant on its start,
-// after every tied coast, so no tie moves), at the search step and then at the engine's fine
-// step. The result is accepted only when it arrives, meets the time and costs less than the
-// run it replaces, so it never makes a result worse. An engine built without cruise_as_hold is
-// left as the grid has it.
+// over the whole interval between its neighbours (after a scan of it, first_scan_points,
+// where the cruise starts with a step down: over a descent into a lower limit the cost has
+// more than one minimum in a point), so the result does not hang on where the grid put it. lambda
+// is searched (the engine's one root search) until that run meets the time within
+// price_time_tolerance_s. At that optimum every hold meets the same Lagrange condition: on level
+// track with a constant efficiency every free hold has the same speed. The last hundredths of a
+// second are met by the last free hold's speed alone (a secant on its start, after every tied
+// coast, so no tie moves), at the search step and then at the engine's fine step. The result is
+// accepted only when it arrives, meets the time and costs less than the run it replaces, so it
+// never makes a result worse. An engine built without cruise_as_hold is left as the grid has it.
 #pragma once
 
 #include <functional>
@@ -35,9 +38,10 @@ namespace ecorail::dp {
 
 struct CruisePolishOptions {
   bool enabled = true;
-  // Polish only cruises at least this long (first hold to the final coast): short holds on a
-  // metro section are not worth the re-simulations.
-  double min_cruise_m = 2000.0;
+  // Polish only cruises at least this long (first hold to the final coast). 0: every run with
+  // a hold, metro sections too, where the grid's staircase down to a lower limit cost up to
+  // 0.25 % (A5 -> A6 at 150 s, docs/journeys.md).
+  double min_cruise_m = 0.0;
   double short_phase_m = 200.0;         // phases inside the cruise shorter than this are dropped
   double search_half_width_m = 3000.0;  // (not used by the price search; kept for callers)
   double search_tolerance_m = 0.5;      // each golden-section search narrows to this width
@@ -49,6 +53,10 @@ struct CruisePolishOptions {
   // how close to the time the price's optimum must come before the last hold's speed alone
   // closes the rest.
   double price_search_step_m = 1.0;
+  // Where the cruise starts with the grid's staircase down to a lower limit, the first search
+  // of each switch point scans its whole interval at this many points and narrows around the
+  // best (0: golden section over the whole interval at once, as on every other cruise).
+  int first_scan_points = 8;
   double price_first_step_m = 40.0;
   int price_max_simulations = 600;
   double price_time_tolerance_s = 0.02;
