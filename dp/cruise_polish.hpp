@@ -40,7 +40,7 @@ struct CruisePolishOptions {
   bool enabled = true;
   // Polish only cruises at least this long (first hold to the final coast). 0: every run with
   // a hold, metro sections too, where the grid's staircase down to a lower limit cost up to
-  // 0.25 % (A5 -> A6 at 150 s, docs/journeys.md).
+  // 0.26 % (A5 -> A6 at 150 s, docs/journeys.md).
   double min_cruise_m = 0.0;
   double short_phase_m = 200.0;         // phases inside the cruise shorter than this are dropped
   double search_half_width_m = 3000.0;  // (not used by the price search; kept for callers)
