@@ -63,6 +63,10 @@ constexpr int kMaxPrices = 12;
 // The narrowest bracket of a hold start worth another re-simulation.
 constexpr double kMinBracket_m = 1e-9;
 
+// A run of short phases starts at a limit's rise when it starts this close to it (two steps of
+// the default 5 m grid, whose switch points fall on its stages).
+constexpr double kRiseSlack_m = 10.0;
+
 // The polished shape: one traction phase ending at the hold (index hold), the cruise, and the
 // phase that leaves it (index exit).
 struct CruiseShape {
@@ -73,11 +77,38 @@ struct CruiseShape {
   bool steps_down = false;
 };
 
+// Where the route's limit steps down (below the limit before it) and up, in track order.
+struct LimitSteps {
+  std::vector<double> drops_m, rises_m;
+  double length_m = 0.0;
+  // Where the limit rises again after s_m (the route's end when it does not).
+  double rise_after_m(double s_m) const {
+    for (double r : rises_m) {
+      if (r > s_m) return r;
+    }
+    return length_m;
+  }
+};
+
+LimitSteps limit_steps(const physics::Route& route) {
+  LimitSteps steps;
+  steps.length_m = route.length_m();
+  const auto& segs = route.segments();
+  for (std::size_t i = 1; i < segs.size(); ++i) {
+    if (segs[i].speed_limit_ms < segs[i - 1].speed_limit_ms - 1e-9)
+      steps.drops_m.push_back(segs[i].start_m);
+    if (segs[i].speed_limit_ms > segs[i - 1].speed_limit_ms + 1e-9)
+      steps.rises_m.push_back(segs[i].start_m);
+  }
+  return steps;
+}
+
 // Drops the short phases inside the cruise (first hold to last hold). nullopt when the program
-// has no cruise to polish. drops_m: where the route's limit steps down, in track order.
+// has no cruise to polish. steps: where the route's limit steps down and up.
 std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double length_m,
-                                        const std::vector<double>& drops_m,
+                                        const LimitSteps& steps,
                                         const CruisePolishOptions& options) {
+  const std::vector<double>& drops_m = steps.drops_m;
   const std::size_t n = program.size();
   std::size_t first = n, last = n;
   for (std::size_t k = 0; k < n; ++k) {
@@ -93,6 +124,29 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
   // staircase up to the cruise speed) are traction.
   while (first < n && (program[first].control != Control::Hold || is_short_phase(first))) {
     ++first;
+  }
+  // No long hold: the grid may step down to a lower limit and ride it at full traction (capped
+  // by the limit) instead of holding it. That ride is the cruise, when a staircase leads into
+  // it (checked below: such a cruise is polished only when it steps down).
+  bool rides_limit = false;
+  if (first == n) {
+    for (std::size_t k = 2; k < n; ++k) {
+      if (program[k].control != Control::MaxTraction || is_short_phase(k) ||
+          !is_short_phase(k - 1)) {
+        continue;
+      }
+      for (double d : drops_m) {
+        if (d >= program[k].from_m - options.short_phase_m &&
+            d <= program[k].from_m + options.short_phase_m) {
+          rides_limit = true;
+        }
+      }
+      if (rides_limit) {
+        first = k;
+        if (last == n || last < first) last = first;
+        break;
+      }
+    }
   }
   if (first == n || first == 0 || first > last) return std::nullopt;
   if (last + 1 >= n) return std::nullopt;  // a cruise into the stop: nothing leaves it
@@ -125,7 +179,7 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
   const double cruise_m = program[last + 1].from_m - program[start].from_m;
   // A step down to a lower limit is polished whatever the cruise's length: there the grid's
   // staircase costs the most (0.26 % on A5 -> A6 at 150 s).
-  if (cruise_m < options.min_cruise_m && start == first) return std::nullopt;
+  if (start == first && (rides_limit || cruise_m < options.min_cruise_m)) return std::nullopt;
   CruiseShape shape;
   for (std::size_t k = 0; k < start; ++k) {
     const bool short_phase = k > 0 && is_short_phase(k);
@@ -140,9 +194,7 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
   shape.program.push_back({program[start].from_m, Control::Hold});
   shape.hold = shape.program.size() - 1;
   shape.steps_down = start < first;
-  auto is_short = [&](std::size_t k) {
-    return k <= last && end_of(k) - program[k].from_m < options.short_phase_m;
-  };
+  auto is_short = [&](std::size_t k) { return k <= last && is_short_phase(k); };
   for (std::size_t k = start; k < n; ++k) {
     if (k == start && start == first) continue;  // the hold pushed above
     if (!is_short(k)) {
@@ -153,10 +205,29 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     // limit, or blips of traction inside a cruise) becomes one phase of the control it spends
     // the most distance in; a run of one is dropped and the phase before it goes on.
     std::size_t j = k;
+    while (j < n && is_short(j)) ++j;
+    // A run that starts where the limit rises begins with the acceleration to the higher
+    // limit: its phases up to the last traction are that traction, and the rest (the grid's
+    // staircase to the hold and coast after it) is merged on its own. Merged whole, its coasts
+    // would outweigh the traction and the run would coast from the rise.
+    std::size_t last_traction = n;
+    for (std::size_t i = k; i < j; ++i) {
+      if (program[i].control == Control::MaxTraction) last_traction = i;
+    }
+    bool at_rise = false;
+    for (double r : steps.rises_m) {
+      at_rise = at_rise || std::abs(program[k].from_m - r) <= kRiseSlack_m;
+    }
+    if (at_rise && last_traction < n && last_traction + 1 < j) {
+      if (shape.program.back().control != Control::MaxTraction) {
+        shape.program.push_back({program[k].from_m, Control::MaxTraction});
+      }
+      shape.dropped += static_cast<int>(last_traction - k);
+      k = last_traction + 1;
+    }
     double length_by_control[physics::kControlCount] = {};
-    while (j < n && is_short(j)) {
-      length_by_control[static_cast<int>(program[j].control)] += end_of(j) - program[j].from_m;
-      ++j;
+    for (std::size_t i = k; i < j; ++i) {
+      length_by_control[static_cast<int>(program[i].control)] += end_of(i) - program[i].from_m;
     }
     shape.dropped += static_cast<int>(j - k);
     // The staircase from the cruise's start down to a lower limit is one coast, to be tied.
@@ -253,7 +324,8 @@ class Polisher {
   // re-simulated time (which falls as the hold starts later, at a higher speed).
   Candidate meet_time(ControlProgram program, std::size_t hold, double step_m) {
     const double lo_limit = program[hold - 1].from_m + 1e-6;
-    const double hi_limit = program[hold + 1].from_m - 1e-6;
+    const double hi_limit =
+        (hold + 1 < program.size() ? program[hold + 1].from_m : engine_.route().length_m()) - 1e-6;
     auto f_at = [&](double x, Candidate* out) {
       program[hold].from_m = x;
       Candidate c;
@@ -339,38 +411,21 @@ struct CoastTie {
   std::size_t coast = 0;
   double limit_m = 0.0;
   double limit_ms = 0.0;
+  // The hold put back after the limit's rise (0 when none), and the rise: a hold that starts
+  // before the rise holds the lower limit, the run riding it, so it is searched after the rise.
+  std::size_t hold_after_rise = 0;
+  double rise_m = 0.0;
 };
-
-// Where the route's limit drops below the limit before it, in track order.
-std::vector<double> limit_drops_m(const physics::Route& route) {
-  std::vector<double> drops;
-  const auto& segs = route.segments();
-  for (std::size_t i = 1; i < segs.size(); ++i) {
-    if (segs[i].speed_limit_ms < segs[i - 1].speed_limit_ms - 1e-9)
-      drops.push_back(segs[i].start_m);
-  }
-  return drops;
-}
-
-// Where the limit rises again after s_m (the route's end when it does not).
-double limit_rise_after_m(const physics::Route& route, double s_m) {
-  const auto& segs = route.segments();
-  for (std::size_t i = 1; i < segs.size(); ++i) {
-    if (segs[i].start_m > s_m && segs[i].speed_limit_ms > segs[i - 1].speed_limit_ms + 1e-9) {
-      return segs[i].start_m;
-    }
-  }
-  return route.length_m();
-}
 
 // Every coast of the cruise that runs, through coasts and holds only, into a lower limit
 // becomes one coast tied to that limit's start: the phases between (the grid's staircase of
 // short coasts and holds above the lower limit) are dropped, and at the limit's start the run
 // holds the limit or, when the grid accelerates from it before the limit rises again, rides it
 // at full traction (the same run at the limit). Returns the ties in track order.
-std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Route& route) {
+std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Route& route,
+                                           const LimitSteps& steps) {
   std::vector<CoastTie> ties;
-  const std::vector<double> drops = limit_drops_m(route);
+  const std::vector<double>& drops = steps.drops_m;
   ControlProgram& p = shape.program;
   const double length_m = route.length_m();
   for (std::size_t k = shape.hold + 1; k < p.size(); ++k) {
@@ -387,7 +442,7 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
     while (m + 1 < p.size() && p[m + 1].from_m <= limit_m) ++m;
     // A coast that runs past the limit's start (the grid's hold begins a step or two after it)
     // is tied as well when the next phase begins before the limit rises again.
-    if (m == k && m + 1 < p.size() && p[m + 1].from_m < limit_rise_after_m(route, limit_m)) ++m;
+    if (m == k && m + 1 < p.size() && p[m + 1].from_m < steps.rise_after_m(limit_m)) ++m;
     if (m == k || m + 1 >= p.size()) continue;
     bool staircase = true;
     for (std::size_t j = k + 1; j < m; ++j) {
@@ -396,7 +451,7 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
     if (!staircase || p[m].control == Control::Coast || p[m].control == Control::MaxBrake) continue;
     Control at_limit = p[m].control;
     std::size_t after = m + 1;
-    const double rise_m = limit_rise_after_m(route, limit_m);
+    const double rise_m = steps.rise_after_m(limit_m);
     // A hold at the limit that lasts past the limit's rise (the grid's acceleration there was
     // short, and dropped) rides the limit at full traction and holds again after the rise,
     // where the search puts it.
@@ -414,6 +469,12 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
                (after >= p.size() || p[after].from_m > rise_m + 2.0)) {
       at_limit = Control::MaxTraction;
       hold_after_rise = true;
+    } else if (at_limit == Control::MaxTraction && after < p.size() &&
+               p[after].control == Control::Coast && rise_m < length_m - 2.0 &&
+               p[after].from_m > rise_m + 2.0) {
+      // The grid rode the limit at full traction, through its rise, into the coast (its short
+      // hold after the rise dropped): the hold is put back the same way.
+      hold_after_rise = true;
     }
     if (after >= p.size() && at_limit == Control::MaxTraction && !hold_after_rise) continue;
     ControlProgram q(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(k) + 1);
@@ -422,7 +483,8 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
     q.insert(q.end(), p.begin() + static_cast<std::ptrdiff_t>(after), p.end());
     shape.dropped += std::max(0, static_cast<int>(p.size()) - static_cast<int>(q.size()));
     p = std::move(q);
-    ties.push_back({k, limit_m, route.speed_limit_ms(limit_m + 1e-6)});
+    ties.push_back(
+        {k, limit_m, route.speed_limit_ms(limit_m + 1e-6), hold_after_rise ? k + 2 : 0, rise_m});
   }
   shape.exit = p.size();
   for (std::size_t k = p.size(); k-- > shape.hold;) {
@@ -449,18 +511,25 @@ double speed_at(const physics::SimulationResult& sim, double s_m) {
   return tr[lo].v_ms + w * (tr[hi].v_ms - tr[lo].v_ms);
 }
 
-// How far a run brakes on [from_m, to_m) (0 when it does not).
-double braked_m(const physics::SimulationResult& sim, double from_m, double to_m) {
-  double first = -1.0;
+// The speed a run loses to its brakes in the steps that end after from_m and by to_m: their
+// braking work over the effective mass and v_ref (0 when it does not brake). It grows from 0
+// as a coast into a lower limit starts later than the one that meets the limit, as the speed
+// the run would reach at the limit grows beyond it, so the tie's miss is one continuous
+// function across its root. The step that ends at to_m counts: a run that reaches the limit a
+// little too fast is capped in that step alone.
+double braked_speed_ms(const physics::SimulationResult& sim, double from_m, double to_m,
+                       double effective_mass_kg, double v_ref_ms) {
+  double work_J = 0.0;
+  double step_start_m = from_m;
   for (const auto& p : sim.trace) {
-    if (p.s_m <= from_m) continue;
-    if (p.s_m >= to_m) break;
-    if (p.regime == physics::Regime::PartialBrake || p.regime == physics::Regime::FullBrake) {
-      first = p.s_m;
-      break;
+    if (p.s_m > to_m + 1e-9) break;
+    if (p.s_m > from_m &&
+        (p.regime == physics::Regime::PartialBrake || p.regime == physics::Regime::FullBrake)) {
+      work_J -= p.force_N * (p.s_m - step_start_m);
     }
+    step_start_m = p.s_m;
   }
-  return first < 0.0 ? 0.0 : to_m - first;
+  return work_J > 0.0 ? work_J / (effective_mass_kg * v_ref_ms) : 0.0;
 }
 
 // The tied coasts' tolerances: a coast start is narrowed to this width, and a run that reaches
@@ -485,11 +554,11 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
     return report;
   }
   const double length_m = engine.route().length_m();
-  std::optional<CruiseShape> shape =
-      cruise_shape(run.program, length_m, limit_drops_m(engine.route()), options);
+  const LimitSteps steps = limit_steps(engine.route());
+  std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, steps, options);
   if (!shape) return report;
   const double c0 = shape->program[shape->exit].from_m;
-  const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route());
+  const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route(), steps);
   report.dropped_phases = shape->dropped;
   Polisher polisher(engine, run.start, target_s, tolerance_s, end, report);
   const std::size_t hold = shape->hold;
@@ -528,17 +597,24 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
       if (!(lo_limit < hi_limit)) return kInf;
       double best = kInf, best_x = hi_limit;
       physics::SimulationResult best_sim;
-      bool met = false;
+      bool met = false, root_met = false;
       auto f = [&](double x) {
         current[tie.coast].from_m = x;
         recent = polisher.simulate(current, price_step_m, recent);
         // Braking counts from the phase before the coast on: a coast that starts too late
         // lets the hold before it run into the limit's braking curve.
-        const double braked = braked_m(recent, lo_limit - 1.0, tie.limit_m);
+        const double braked = braked_speed_ms(recent, lo_limit - 1.0, tie.limit_m,
+                                              engine.train().effective_mass_kg(), tie.limit_ms);
         const double miss = braked > 0.0 ? -braked : tie.limit_ms - speed_at(recent, tie.limit_m);
         met = miss >= 0.0 && miss <= kTieSpeed_ms;
+        // The tie's run is the one that meets the limit (a function of the points before it,
+        // not of the probes the bracketing happened to make on its way there); the cheapest
+        // probe stands in only when no run meets it.
         const double cost = lagrangian_of(recent);
-        if (cost < best) best = cost, best_x = x, best_sim = recent;
+        if ((met && !root_met) || (met == root_met && cost < best)) {
+          best = cost, best_x = x, best_sim = recent;
+        }
+        root_met = root_met || met;
         return miss;
       };
       const double x0 = std::min(std::max(current[tie.coast].from_m, lo_limit), hi_limit);
@@ -584,7 +660,10 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   };
   auto bounds = [&](std::size_t i) {
     const std::size_t k = free[i];
-    const double lo = current[is_tied(k - 1) ? k - 2 : k - 1].from_m + 1.0;
+    double lo = current[is_tied(k - 1) ? k - 2 : k - 1].from_m + 1.0;
+    for (const CoastTie& tie : ties) {
+      if (tie.hold_after_rise == k) lo = std::max(lo, tie.rise_m + 1.0);
+    }
     std::size_t m = k + 1;
     if (m < n && is_tied(m)) ++m;
     // A last phase that the end solves moves with every point before it: only the route's end
@@ -689,7 +768,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   // coast's start (the run is faster the later either starts).
   std::vector<std::size_t> time_switches = {time_hold};
   for (std::size_t k = n; k-- > hold;) {
-    if (searched[k] && base[k].control == Control::Coast && k + 1 < n && k != time_hold) {
+    if (searched[k] && base[k].control == Control::Coast && k != time_hold) {
       time_switches.push_back(k);
       break;
     }

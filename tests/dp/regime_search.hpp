@@ -13,6 +13,18 @@
 
 namespace ecorail::test {
 
+// Whether a run brakes in a step that ends by to_m, the step that ends there included (a run
+// a little too fast at a lower limit's start is capped by its braking curve in that step
+// alone): the families' coast into a lower limit starts as late as it can without it.
+inline bool brakes_by(const physics::SimulationResult& sim, double to_m) {
+  for (const auto& p : sim.trace) {
+    if (p.s_m > to_m + 1e-6) break;
+    if (p.regime == physics::Regime::FullBrake || p.regime == physics::Regime::PartialBrake)
+      return true;
+  }
+  return false;
+}
+
 struct RegimeSearchResult {
   double traction_energy_J = 0.0;
   double running_time_s = 0.0;

@@ -214,13 +214,7 @@ double strategy_J(const physics::Motion& motion, double v_ms, double target_s) {
     const double mid = 0.5 * (lo + hi);
     const auto sim = run(motion, program(mid, kLength_m - 1.0));
     // Too late a coast meets the lower limit's braking curve and brakes before the drop.
-    bool slow_enough = !sim.trace.empty();
-    for (const auto& p : sim.trace) {
-      if (p.s_m < kDrop_m - 1e-6 &&
-          (p.regime == physics::Regime::FullBrake || p.regime == physics::Regime::PartialBrake)) {
-        slow_enough = false;
-      }
-    }
+    const bool slow_enough = !sim.trace.empty() && !test::brakes_by(sim, kDrop_m);
     (slow_enough ? lo : hi) = mid;
   }
   const double c1 = lo;
