@@ -42,6 +42,7 @@ bool CruisePolishOptions::IsValid(std::string* error) const {
     return fail("cruise polish price_first_step_m must be finite and > 0");
   }
   if (price_max_simulations < 1) return fail("cruise polish price_max_simulations must be >= 1");
+  if (max_simulations < 1) return fail("cruise polish max_simulations must be >= 1");
   if (first_scan_points < 0) return fail("cruise polish first_scan_points must be >= 0");
   if (!(std::isfinite(price_time_tolerance_s) && price_time_tolerance_s > 0.0)) {
     return fail("cruise polish price_time_tolerance_s must be finite and > 0");
@@ -586,7 +587,11 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   auto lagrangian_of = [&](const physics::SimulationResult& sim) {
     return polisher.ends(sim) ? engine.energy_cost_J(sim) + lambda * sim.running_time_s : kInf;
   };
+  // Past the budget every run counts as not ending as asked: the searches close at once and
+  // the grid's run is kept (below).
+  auto exhausted = [&] { return report.simulations >= options.max_simulations; };
   auto evaluate = [&](std::size_t first_changed) {
+    if (exhausted()) return kInf;
     for (const CoastTie& tie : ties) {
       if (tie.coast < first_changed) continue;
       // The coast starts as late as it can without braking before the lower limit: f falls
@@ -757,6 +762,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
         log_lambda0, kPriceBracketStep, kMaxPrices);
     price.narrow([&] { return std::abs(error_s) <= options.price_time_tolerance_s; });
   }
+  if (exhausted()) return report;
   std::size_t time_hold = hold;
   for (std::size_t k = hold; k + 1 < n; ++k) {
     if (searched[k] && base[k].control == Control::Hold &&

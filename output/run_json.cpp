@@ -61,9 +61,12 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
                {"substep_m", s.grid.substep_m},
                {"stages", s.stages},
                {"nodes", s.nodes}};
+  // The polish's re-simulations whether or not its run replaced the grid's (a rejected polish
+  // costs time too); "cruise_polish" below is there only when it did.
   j["search"] = {{"lambda_evaluations", s.lambda_evaluations},
                  {"trim_simulations", s.trim_simulations},
-                 {"trim_shift_m", s.trim_shift_m}};
+                 {"trim_shift_m", s.trim_shift_m},
+                 {"cruise_polish_simulations", s.cruise_polish_simulations}};
   if (s.cruise_polished) {
     j["search"]["cruise_polish"] = {{"dropped_phases", s.cruise_dropped_phases},
                                     {"simulations", s.cruise_polish_simulations},

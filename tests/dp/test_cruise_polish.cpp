@@ -139,11 +139,24 @@ TEST(CruisePolish, ShortCruisesAndDisabledPolishAreLeftAlone) {
   const dp::TimeSearchResult same = dp::solve_for_time(held, target_s, long_only);
   EXPECT_FALSE(same.cruise_polish.applied);
   EXPECT_EQ(same.run.cost_J, plain.run.cost_J);
+  // A polish out of its budget keeps the grid's run (the full polish of this run needs more
+  // than 40 re-simulations and replaces it: LongLevelRunIsOneHold... above). A search
+  // already under way when the budget runs out finishes its root (at most kMaxTimeSolves).
+  dp::TimeSearchOptions short_budget;
+  short_budget.cruise_polish.max_simulations = 40;
+  const dp::TimeSearchResult budget = dp::solve_for_time(held, target_s, short_budget);
+  EXPECT_FALSE(budget.cruise_polish.applied);
+  EXPECT_LE(budget.cruise_polish.simulations, 40 + 64);
+  EXPECT_EQ(budget.run.cost_J, plain.run.cost_J);
   std::string why;
   dp::TimeSearchOptions bad;
   bad.cruise_polish.search_step_m = 0.0;
   EXPECT_FALSE(bad.IsValid(&why));
   EXPECT_NE(why.find("search_step_m"), std::string::npos);
+  dp::TimeSearchOptions no_budget;
+  no_budget.cruise_polish.max_simulations = 0;
+  EXPECT_FALSE(no_budget.IsValid(&why));
+  EXPECT_NE(why.find("max_simulations"), std::string::npos);
 }
 
 }  // namespace
