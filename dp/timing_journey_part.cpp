@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "dp/cruise_polish.hpp"
 #include "dp/lambda_bracket.hpp"
@@ -474,7 +475,7 @@ class PartSolver {
         const double miss = time_miss_s(run, p);
         if (miss != 0.0) bound_s_[m] = miss > 0.0 ? p.latest_s : p.earliest_s;
       }
-      if (!meet_bindings(run)) {
+      if (!meet_bindings(run) && !stitch_after_failed_search(run)) {
         ok = false;
         break;
       }
@@ -662,12 +663,14 @@ class PartSolver {
   // re-simulated from the start and kept when it reaches its stop at the latest arrival and
   // passes the point at its bound, and either the run before missed the window or the
   // stitched one costs less.
-  void close_gap(LambdaRun& run) {
+  // True when the run passes the point within the tolerance afterwards (also when it did
+  // before).
+  bool close_gap(LambdaRun& run) {
     const PartPoint& p = points_[binding_[0]];
     const double bound = bound_s_[0];
     const double s_k = p.s_m;
     const double off = passing_at(run.sim.trace, s_k).t_s - bound;
-    if (!(std::abs(off) > options_.time_tolerance_s)) return;
+    if (!(std::abs(off) > options_.time_tolerance_s)) return finite(off);
     LambdaRun trimmed = run;
     evaluations_ += trim_switch(
         engine_, end_, trimmed, 0.0, s_k,
@@ -676,14 +679,14 @@ class PartSolver {
         },
         kTrimTolerance_s, std::abs(off) + kMaxTrim_s);
     const Passing at = passing_at(trimmed.sim.trace, s_k);
-    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return;
+    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return false;
     TimeSearchResult rest;
     try {
       TimeSearchOptions search;
       search.progress = options_.progress;
       rest = solve_for_time(engine_, target_s_ - at.t_s, search, {s_k, at.v_ms});
     } catch (const TimeRequestError&) {
-      return;  // the time left is outside what the rest can run
+      return false;  // the time left is outside what the rest can run
     }
     evaluations_ += rest.iterations;
     // (A rest whose own trim stopped a few milliseconds short is still a rest: the stitched
@@ -691,7 +694,7 @@ class PartSolver {
     const bool rest_near =
         run_arrives(rest.run.sim) &&
         std::abs(rest.run.sim.running_time_s - (target_s_ - at.t_s)) <= kArrivalTolerance_s;
-    if (!rest.converged && !rest_near) return;
+    if (!rest.converged && !rest_near) return false;
     physics::ControlProgram stitched;
     for (const auto& step : trimmed.program) {
       if (step.from_m < s_k) stitched.push_back(step);
@@ -701,7 +704,10 @@ class PartSolver {
     }
     // The run as it is misses the window (early for an earliest bound, late for a latest one):
     // any feasible stitched run replaces it; otherwise only a cheaper one.
-    const bool run_misses = off < 0.0 ? bound == p.earliest_s : bound == p.latest_s;
+    // (So does a run that misses its arrival.)
+    const bool run_misses =
+        (off < 0.0 ? bound == p.earliest_s : bound == p.latest_s) || !end_(run.sim) ||
+        !(std::abs(run.sim.running_time_s - target_s_) <= options_.time_tolerance_s);
     LambdaRun out = run;
     out.program = simplify_program(stitched, 0.0);
     out.sim = engine_.simulate(out.program, start_);
@@ -711,10 +717,64 @@ class PartSolver {
     if (!end_(out.sim) || !(std::abs(out.sim.running_time_s - target_s_) <= kArrivalTolerance_s) ||
         !(std::abs(now.t_s - bound) <= options_.time_tolerance_s) ||
         !(run_misses || out.cost_J < run.cost_J)) {
-      return;
+      return false;
     }
     trim_arrival(out, s_k);
     run = std::move(out);
+    return true;
+  }
+
+  // The price search for the one binding point of a part that ends at rest found no run that
+  // also meets the arrival (on a coarse grid the arrival can jump by tens of seconds between
+  // neighbouring prices after the point, e.g. CH_StGallen_Wil's feasible journey at --ds 10
+  // --dv 0.5): the run is stitched at the point instead (close_gap: one switch before it moved
+  // until the run passes at the bound, the rest re-solved by the plain search from there). The
+  // stitched run keeps every window, checked on its re-simulation, but its passing speed is not
+  // searched, so it is reported as possibly not the least-energy run. False when that fails too.
+  bool stitch_after_failed_search(LambdaRun& run) {
+    if (binding_.size() != 1 || end_.moving) return false;
+    const PartPoint& p = points_[binding_[0]];
+    const double bound = bound_s_[0];
+    const std::size_t notes_before = notes_.size();
+    auto stitched = [&](LambdaRun r) -> std::optional<LambdaRun> {
+      if (!close_gap(r)) return std::nullopt;
+      const double t = passing_at(r.sim.trace, p.s_m).t_s;
+      if (!(std::abs(t - bound) <= options_.time_tolerance_s) ||
+          !(std::abs(r.sim.running_time_s - target_s_) <= options_.time_tolerance_s)) {
+        return std::nullopt;
+      }
+      return r;
+    };
+    // The prefix from the price before the point alone, searched for its passing time (the
+    // price after it held at the part's plain price; the arrival is the rest's re-solve), and
+    // the run as it is: each stitched, the cheaper kept.
+    LambdaRun priced;
+    double priced_abs = kInf;
+    falling_root(
+        [&](double x) {
+          LambdaRun r = evaluate({std::exp(x)}, lambda_after_);
+          const double t = passing_at(r.sim.trace, p.s_m).t_s;
+          if (!end_(r.sim) || !finite(t)) return kInf;
+          if (std::abs(t - bound) < priced_abs) priced_abs = std::abs(t - bound), priced = r;
+          return t - bound;
+        },
+        std::log(std::max(1.0, before_[0])), kFirstLogPriceStep, 0.0, 30.0, kOuterBudget,
+        kPassingTolerance_s);
+    std::optional<LambdaRun> best = stitched(run);
+    if (priced_abs <= kMaxTrim_s) {
+      std::optional<LambdaRun> other = stitched(fine(std::move(priced)));
+      if (other && (!best || other->cost_J < best->cost_J)) best = std::move(other);
+    }
+    if (!best) return false;
+    run = std::move(*best);
+    // (The search's "found no run" note gives way to what was done instead.)
+    notes_.resize(notes_before > 0 ? notes_before - 1 : 0);
+    notes_.push_back(format_text(
+        "the price search for %s found no run that also meets the arrival on this grid; the run "
+        "is stitched at its bound (the rest re-solved from there): every window holds, but the "
+        "run may not be the least-energy one",
+        point_name(p.index, windows_[p.index]).c_str()));
+    return true;
   }
 
   // The binding windows put at their bounds, jointly. The price search leaves each binding
