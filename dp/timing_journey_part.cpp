@@ -654,15 +654,15 @@ class PartSolver {
     }
   }
 
-  // One binding point whose search ended away from its bound (the passing time jumps between
-  // neighbouring prices, e.g. a stretch priced so low that a coast appears or vanishes, and
-  // the run is seconds inside its window or a few tenths outside it): one switch before the
-  // point is moved, however far, so the run passes at the bound, and the rest of the run from
-  // there is re-solved from the state it passes in for the time left (the plain search from a
-  // restart: the optimum of the rest, whatever came before). The stitched program is
-  // re-simulated from the start and kept when it reaches its stop at the latest arrival and
-  // passes the point at its bound, and either the run before missed the window or the
-  // stitched one costs less.
+  // One binding point of a part that ends at rest, its run stitched at the point: one switch
+  // before the point is moved, however far, so the run passes at the bound (when its search
+  // ended away from it: the passing time jumps between neighbouring prices, e.g. a stretch
+  // priced so low that a coast appears or vanishes), and the rest of the run from there is
+  // re-solved from the state it passes in for the time left (the plain search from a restart:
+  // the optimum of the rest, whatever came before, with the cruise polish the stage-priced
+  // sweep does not run). The stitched program is re-simulated from the start and kept when it
+  // reaches its stop at the latest arrival and passes the point at its bound, and either the
+  // run before missed a window (the point's or the arrival) or the stitched one costs less.
   // True when the run passes the point within the tolerance afterwards (also when it did
   // before).
   bool close_gap(LambdaRun& run) {
@@ -670,7 +670,8 @@ class PartSolver {
     const double bound = bound_s_[0];
     const double s_k = p.s_m;
     const double off = passing_at(run.sim.trace, s_k).t_s - bound;
-    if (!(std::abs(off) > options_.time_tolerance_s)) return finite(off);
+    if (!finite(off)) return false;
+    const bool was_within = std::abs(off) <= options_.time_tolerance_s;
     LambdaRun trimmed = run;
     evaluations_ += trim_switch(
         engine_, end_, trimmed, 0.0, s_k,
@@ -679,14 +680,14 @@ class PartSolver {
         },
         kTrimTolerance_s, std::abs(off) + kMaxTrim_s);
     const Passing at = passing_at(trimmed.sim.trace, s_k);
-    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return false;
+    if (!(std::abs(at.t_s - bound) <= kTrimTolerance_s) || !(at.v_ms > 0.0)) return was_within;
     TimeSearchResult rest;
     try {
       TimeSearchOptions search;
       search.progress = options_.progress;
       rest = solve_for_time(engine_, target_s_ - at.t_s, search, {s_k, at.v_ms});
     } catch (const TimeRequestError&) {
-      return false;  // the time left is outside what the rest can run
+      return was_within;  // the time left is outside what the rest can run
     }
     evaluations_ += rest.iterations;
     // (A rest whose own trim stopped a few milliseconds short is still a rest: the stitched
@@ -694,7 +695,7 @@ class PartSolver {
     const bool rest_near =
         run_arrives(rest.run.sim) &&
         std::abs(rest.run.sim.running_time_s - (target_s_ - at.t_s)) <= kArrivalTolerance_s;
-    if (!rest.converged && !rest_near) return false;
+    if (!rest.converged && !rest_near) return was_within;
     physics::ControlProgram stitched;
     for (const auto& step : trimmed.program) {
       if (step.from_m < s_k) stitched.push_back(step);
@@ -717,7 +718,7 @@ class PartSolver {
     if (!end_(out.sim) || !(std::abs(out.sim.running_time_s - target_s_) <= kArrivalTolerance_s) ||
         !(std::abs(now.t_s - bound) <= options_.time_tolerance_s) ||
         !(run_misses || out.cost_J < run.cost_J)) {
-      return false;
+      return was_within;
     }
     trim_arrival(out, s_k);
     run = std::move(out);
