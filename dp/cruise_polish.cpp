@@ -404,6 +404,41 @@ class Polisher {
 
 namespace {
 
+// A hold the train cannot keep: on a climb its traction saturates and the speed falls, and
+// after the climb the hold keeps the lower speed. The optimum runs full traction through the
+// climb (from a point the search places, before it or on it) and then accelerates back to a
+// cruise speed of its own: the hold's saturated stretch of the grid's run (at least min_m of
+// full traction under Hold) becomes a traction phase followed by a hold, both switches
+// searched. The program runs the same as before until the search moves them. Returns the
+// phases added.
+int split_saturated_holds(CruiseShape& shape, const physics::SimulationResult& sim, double length_m,
+                          double min_m) {
+  ControlProgram& p = shape.program;
+  int added = 0;
+  for (std::size_t k = shape.hold; k < shape.exit && k < p.size(); ++k) {
+    if (p[k].control != Control::Hold) continue;
+    const double a = p[k].from_m, b = k + 1 < p.size() ? p[k + 1].from_m : length_m;
+    double sat_from = -1.0, sat_to = -1.0;
+    for (const physics::TracePoint& t : sim.trace) {
+      if (t.s_m <= a || t.s_m >= b) continue;
+      if (t.regime == physics::Regime::FullTraction) {
+        if (sat_from < 0.0) sat_from = t.s_m;
+        sat_to = t.s_m;
+      } else if (sat_from >= 0.0) {
+        if (sat_to - sat_from >= min_m) break;
+        sat_from = sat_to = -1.0;  // a blip: not a climb
+      }
+    }
+    if (!(sat_from >= 0.0 && sat_to - sat_from >= min_m && sat_to < b - 1.0)) continue;
+    p.insert(p.begin() + static_cast<std::ptrdiff_t>(k) + 1,
+             {{sat_from, Control::MaxTraction}, {sat_to, Control::Hold}});
+    shape.exit += 2;
+    added += 2;
+    k += 2;  // the hold after the climb may saturate again further on
+  }
+  return added;
+}
+
 // A coast into a lower limit, tied: its start is solved so that the run reaches the limit's
 // speed exactly at the limit's start (Howlett and Pudney's condition for a step down of the
 // limit: hold, then coast to meet the lower limit where it begins). coast is its index in the
@@ -558,6 +593,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   const LimitSteps steps = limit_steps(engine.route());
   std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, steps, options);
   if (!shape) return report;
+  split_saturated_holds(*shape, run.sim, length_m, options.short_phase_m);
   const double c0 = shape->program[shape->exit].from_m;
   const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route(), steps);
   report.dropped_phases = shape->dropped;

@@ -8,8 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "data/train_io.hpp"
+#include "data/ttobench_io.hpp"
 #include "dp/cruise_polish.hpp"
 #include "dp/regimes.hpp"
 #include "dp/section_engine.hpp"
@@ -122,6 +126,54 @@ TEST(CruisePolish, ADescentIsCoastedNotBrakedThrough) {
     if (p.regime != physics::Regime::PartialBrake) continue;
     EXPECT_GE(p.v_ms, physics::speed_from_e(held.envelope().e_at(p.s_m)) - 0.2) << p.s_m;
   }
+}
+
+// Level, a long climb too steep to hold the cruise speed on, level again, with the intercity
+// train of TTOBench's GPOPS-II case (data/ttobench/; 18 per mille over 10 km, where it cannot hold
+// its cruise speed, as TTOBench's VIRM6 cannot on 00_var_gradient_plus_10's 10 per mille). On level
+// track the optimal hold speed is set by the time price alone (where the marginal energy of a
+// second saved equals the price), so the optimum holds one speed before and after the climb, with
+// full traction through it and back up to that speed. On the coarse grid the speed falls by less
+// than a grid step per stage on the climb, so the grid's run is one hold through it that saturates
+// and keeps the lower speed after it (9 km/h lower on TTOBench's track); the polish must give the
+// run its speed back: the two level holds within 0.5 km/h of each other, the time met, and no
+// dearer than the grid's run. (Without the split of the saturated hold: 132.6 km/h before, 130.8
+// km/h after. On 21 per mille the polish still ends 4 km/h apart: docs/ttobench.md.) About 40 s:
+// the polish of a 40 km run.
+TEST(CruisePolish, AfterAClimbTooSteepToHoldTheRunHoldsItsSpeedBeforeTheClimb) {
+  std::vector<physics::RouteSegment> segs(3);
+  const double ends[] = {10000.0, 20000.0, 40000.0}, grades[] = {0.0, 18.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = i == 0 ? 0.0 : ends[i - 1];
+    segs[i].end_m = ends[i];
+    segs[i].gradient_permille = grades[i];
+    segs[i].speed_limit_ms = units::kmh_to_ms(140.0);
+  }
+  const physics::Route route(segs, 0.0, 1, "C0", "C1");
+  const std::string file = ECORAIL_SOURCE_DIR "/data/ttobench/NL_Intercity_VIRM6_gpops.json";
+  std::ifstream in(file);
+  ASSERT_TRUE(in) << file;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const physics::Train train = data::train_from_ttobench(text, file);
+  const dp::SectionEngine held(train, route, coarse(true));
+  const double target_s = held.min_time_run().running_time_s * 1.10;
+  const dp::TimeSearchResult r = dp::solve_for_time(held, target_s, {});
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(r.run.sim.running_time_s, target_s, 1e-3);
+  EXPECT_LE(r.run.cost_J, r.cruise_polish.cost_before_J);
+  auto hold_speed_kmh = [&](double from_m, double to_m) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const physics::TracePoint& p : r.run.sim.trace) {
+      if (p.s_m < from_m || p.s_m > to_m || p.regime != physics::Regime::PartialTraction) continue;
+      lo = std::min(lo, p.v_ms), hi = std::max(hi, p.v_ms);
+    }
+    EXPECT_LE(hi - lo, units::kmh_to_ms(0.05)) << "no single hold on " << from_m << "-" << to_m;
+    return units::ms_to_kmh(0.5 * (lo + hi));
+  };
+  const double before = hold_speed_kmh(7000.0, 9000.0), after = hold_speed_kmh(23500.0, 25500.0);
+  ASSERT_TRUE(std::isfinite(before) && std::isfinite(after));
+  EXPECT_NEAR(after, before, 0.5) << "hold " << before << " km/h before the climb, " << after
+                                  << " km/h after it";
 }
 
 TEST(CruisePolish, ShortCruisesAndDisabledPolishAreLeftAlone) {
