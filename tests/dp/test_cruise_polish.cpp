@@ -7,6 +7,7 @@
 // start, and never above the run it starts from.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -30,6 +31,20 @@ physics::Route long_level_route() {
   seg.end_m = 8000.0;
   seg.speed_limit_ms = units::kmh_to_ms(80.0);
   return physics::Route({seg}, 0.0, 1, "L0", "L1");
+}
+
+// Level track, a grade (per mille) from ends_m[0] to ends_m[1], level again to ends_m[2], under
+// one speed limit.
+physics::Route level_grade_level(const std::array<double, 3>& ends_m, double grade_permille,
+                                 double limit_kmh) {
+  std::vector<physics::RouteSegment> segs(3);
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = i == 0 ? 0.0 : ends_m[i - 1];
+    segs[i].end_m = ends_m[i];
+    segs[i].gradient_permille = i == 1 ? grade_permille : 0.0;
+    segs[i].speed_limit_ms = units::kmh_to_ms(limit_kmh);
+  }
+  return physics::Route(segs, 0.0, 1, "G0", "G1");
 }
 
 dp::EngineOptions coarse(bool cruise_as_hold) {
@@ -101,15 +116,7 @@ TEST(CruisePolish, LongLevelRunIsOneHoldAndAsCheapAsTheStrategyOptimum) {
 // grid's own run (which coasts down the hill) beyond 0.05 %. Holding by braking cost 12 % more
 // on TTOBench's 00_var_gradient_minus_10 before holds learnt to coast.
 TEST(CruisePolish, ADescentIsCoastedNotBrakedThrough) {
-  std::vector<physics::RouteSegment> segs(3);
-  const double ends[] = {4000.0, 7000.0, 12000.0}, grades[] = {0.0, -20.0, 0.0};
-  for (int i = 0; i < 3; ++i) {
-    segs[i].start_m = i == 0 ? 0.0 : ends[i - 1];
-    segs[i].end_m = ends[i];
-    segs[i].gradient_permille = grades[i];
-    segs[i].speed_limit_ms = units::kmh_to_ms(80.0);
-  }
-  const physics::Route route(segs, 0.0, 1, "D0", "D1");
+  const physics::Route route = level_grade_level({4000.0, 7000.0, 12000.0}, -20.0, 80.0);
   const physics::Train train = data::default_train();
   const dp::SectionEngine held(train, route, coarse(true));
   const dp::SectionEngine grid(train, route, coarse(false));
@@ -141,15 +148,7 @@ TEST(CruisePolish, ADescentIsCoastedNotBrakedThrough) {
 // km/h after. On 21 per mille the polish still ends 4 km/h apart: docs/ttobench.md.) About 40 s:
 // the polish of a 40 km run.
 TEST(CruisePolish, AfterAClimbTooSteepToHoldTheRunHoldsItsSpeedBeforeTheClimb) {
-  std::vector<physics::RouteSegment> segs(3);
-  const double ends[] = {10000.0, 20000.0, 40000.0}, grades[] = {0.0, 18.0, 0.0};
-  for (int i = 0; i < 3; ++i) {
-    segs[i].start_m = i == 0 ? 0.0 : ends[i - 1];
-    segs[i].end_m = ends[i];
-    segs[i].gradient_permille = grades[i];
-    segs[i].speed_limit_ms = units::kmh_to_ms(140.0);
-  }
-  const physics::Route route(segs, 0.0, 1, "C0", "C1");
+  const physics::Route route = level_grade_level({10000.0, 20000.0, 40000.0}, 18.0, 140.0);
   const std::string file = ECORAIL_SOURCE_DIR "/data/ttobench/NL_Intercity_VIRM6_gpops.json";
   std::ifstream in(file);
   ASSERT_TRUE(in) << file;
