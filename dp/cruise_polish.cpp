@@ -409,18 +409,17 @@ namespace {
 // climb (from a point the search places, before it or on it) and then accelerates back to a
 // cruise speed of its own: the hold's saturated stretch of the grid's run (at least min_m of
 // full traction under Hold) becomes a traction phase followed by a hold, both switches
-// searched. The program runs the same as before until the search moves them. Returns the
-// phases added.
-int split_saturated_holds(CruiseShape& shape, const physics::SimulationResult& sim, double length_m,
-                          double min_m) {
+// searched. The program runs the same as before until the search moves them.
+void split_saturated_holds(CruiseShape& shape, const physics::SimulationResult& sim,
+                           double length_m, double min_m) {
   ControlProgram& p = shape.program;
-  int added = 0;
   for (std::size_t k = shape.hold; k < shape.exit && k < p.size(); ++k) {
     if (p[k].control != Control::Hold) continue;
     const double a = p[k].from_m, b = k + 1 < p.size() ? p[k + 1].from_m : length_m;
     double sat_from = -1.0, sat_to = -1.0;
     for (const physics::TracePoint& t : sim.trace) {
-      if (t.s_m <= a || t.s_m >= b) continue;
+      if (t.s_m >= b) break;  // (the trace runs forward)
+      if (t.s_m <= a) continue;
       if (t.regime == physics::Regime::FullTraction) {
         if (sat_from < 0.0) sat_from = t.s_m;
         sat_to = t.s_m;
@@ -433,10 +432,8 @@ int split_saturated_holds(CruiseShape& shape, const physics::SimulationResult& s
     p.insert(p.begin() + static_cast<std::ptrdiff_t>(k) + 1,
              {{sat_from, Control::MaxTraction}, {sat_to, Control::Hold}});
     shape.exit += 2;
-    added += 2;
     k += 2;  // the hold after the climb may saturate again further on
   }
-  return added;
 }
 
 // A coast into a lower limit, tied: its start is solved so that the run reaches the limit's

@@ -736,7 +736,6 @@ class PartSolver {
     if (binding_.size() != 1 || end_.moving) return false;
     const PartPoint& p = points_[binding_[0]];
     const double bound = bound_s_[0];
-    const std::size_t notes_before = notes_.size();
     auto stitched = [&](LambdaRun r) -> std::optional<LambdaRun> {
       if (!close_gap(r)) return std::nullopt;
       const double t = passing_at(r.sim.trace, p.s_m).t_s;
@@ -769,7 +768,8 @@ class PartSolver {
     if (!best) return false;
     run = std::move(*best);
     // (The search's "found no run" note gives way to what was done instead.)
-    notes_.resize(notes_before > 0 ? notes_before - 1 : 0);
+    const auto no_run = std::find(notes_.begin(), notes_.end(), no_run_note(p));
+    if (no_run != notes_.end()) notes_.erase(no_run);
     notes_.push_back(format_text(
         "the price search for %s found no run that also meets the arrival on this grid; the run "
         "is stitched at its bound (the rest re-solved from there): every window holds, but the "
@@ -999,6 +999,12 @@ class PartSolver {
     return true;
   }
 
+  // The note of a price search that found no run meeting point p.
+  std::string no_run_note(const PartPoint& p) const {
+    return format_text("the price search for %s found no run that meets it",
+                       point_name(p.index, windows_[p.index]).c_str());
+  }
+
   // The price before binding point m searched for its passing time, the others held; run and
   // the prices are set to the best run found. False (with a note) when no run meets it.
   bool search_price(std::size_t m, LambdaRun& run) {
@@ -1027,8 +1033,7 @@ class PartSolver {
     falling_root(g, std::log(std::max(1.0, before_[m])), kFirstLogPriceStep, 0.0, 30.0,
                  kOuterBudget, passing_tolerance_s());
     if (!best_ok) {
-      notes_.push_back(format_text("the price search for %s found no run that meets it",
-                                   point_name(p.index, windows_[p.index]).c_str()));
+      notes_.push_back(no_run_note(p));
       return false;
     }
     run = std::move(best);

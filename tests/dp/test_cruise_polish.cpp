@@ -145,7 +145,7 @@ TEST(CruisePolish, ADescentIsCoastedNotBrakedThrough) {
 // and keeps the lower speed after it (9 km/h lower on TTOBench's track); the polish must give the
 // run its speed back: the two level holds within 0.5 km/h of each other, the time met, and no
 // dearer than the grid's run. (Without the split of the saturated hold: 132.6 km/h before, 130.8
-// km/h after. On 21 per mille the polish still ends 4 km/h apart: docs/ttobench.md.) About 40 s:
+// km/h after. On 21 per mille the polish still ends 4 km/h apart: docs/journeys.md.) About 40 s:
 // the polish of a 40 km run.
 TEST(CruisePolish, AfterAClimbTooSteepToHoldTheRunHoldsItsSpeedBeforeTheClimb) {
   const physics::Route route = level_grade_level({10000.0, 20000.0, 40000.0}, 18.0, 140.0);
