@@ -2,9 +2,10 @@
 // (100 trains, span 63900 s, headways 120-660 s, the reference pattern at the model's default
 // 0.01 s step): the whole bound (tables and multiplier search) on the bound grid the argument
 // names (bins per second), with the bound on the used regenerated energy, the DP runs, the
-// dual's floor and the time of the tables as counters; and the bound restricted to the core. The
-// pattern and the model are built outside the timings. Run: build/bench/bench_window_bound   (or
-// under valgrind --tool=callgrind with
+// dual's floor and the time of the tables as counters; the bound restricted to the core; and the
+// exact refinement (energy/window_refine.hpp) of the start the search builds from the core's
+// maximisers. The pattern and the model are built outside the timings. Run:
+// build/bench/bench_window_bound   (or under valgrind --tool=callgrind with
 // --benchmark_filter=.../1 for instruction counts)
 #include <benchmark/benchmark.h>
 
@@ -16,8 +17,10 @@
 #include "data/train_io.hpp"
 #include "energy/power_flow_model.hpp"
 #include "energy/window_bound.hpp"
+#include "energy/window_refine.hpp"
 #include "fleet/fleet_pattern.hpp"
 #include "fleet/fleet_problem.hpp"
+#include "fleet/relaxed_start.hpp"
 #include "reference_pattern.hpp"
 
 namespace {
@@ -63,7 +66,29 @@ void BM_WindowBoundCoreOnly(benchmark::State& state) {
     state.counters["core_min_s"] = b.core_min_s;
   }
 }
-BENCHMARK(BM_WindowBoundCoreOnly)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_WindowBoundCoreOnly)
+    ->Arg(2)
+    ->Arg(10)
+    ->Arg(100)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+
+// The exact refinement (default options, a headway moves by up to 3 s a pass) of the joined start
+// from the core relaxation's maximisers (fleet/relaxed_start.hpp), which the search anneals:
+// the used energy before and after, the passes and the window terms computed.
+void BM_WindowRefineOfTheRelaxedStart(benchmark::State& state) {
+  const energy::PowerFlowModel& m = reference_model();
+  const std::vector<int> start =
+      fleet::relaxed_start_headways(m.relaxation_maximisers_s(), fleet::FleetProblem{});
+  for (auto _ : state) {
+    const energy::WindowRefineSummary r = energy::window_refine(m.profile(), m.limits(), start);
+    state.counters["start_used_kJ"] = r.start_used_J / 1e3;
+    state.counters["used_kJ"] = r.used_J / 1e3;
+    state.counters["passes"] = r.passes;
+    state.counters["window_terms"] = static_cast<double>(r.window_terms);
+  }
+}
+BENCHMARK(BM_WindowRefineOfTheRelaxedStart)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -153,4 +153,8 @@ void FleetEnergyModel::check_memory(double bytes, const std::string& what) const
   throw dp::ResourceLimitError(buf);
 }
 
+std::vector<int> FleetEnergyModel::refined_headways_s(const std::vector<int>&, int, double) const {
+  return {};
+}
+
 }  // namespace ecorail::energy

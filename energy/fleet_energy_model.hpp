@@ -178,6 +178,12 @@ class FleetEnergyModel {
   // sums miss the span): starts for a search (fleet/relaxed_start.hpp). None by default; costs
   // a DP, so the search asks only when it builds that start.
   virtual std::vector<std::vector<int>> relaxation_maximisers_s() const { return {}; }
+  // A sequence of the same span that uses more regenerated energy than `headways_s`, found near
+  // it by an exact search the model can run on part of its domain (the power-flow model: the
+  // window terms' DP, energy/window_refine.hpp); empty when it has none, does not apply or finds
+  // nothing better. time_limit_s (0: none) bounds it between its passes.
+  virtual std::vector<int> refined_headways_s(const std::vector<int>& headways_s, int threads,
+                                              double time_limit_s) const;
   // (bound - result) / result's substation energy, in the bound's own form.
   double gap_fraction(const FleetEvaluation& result, const FleetLowerBound& bound) const;
   // What no bound built on pairs of trains can come below for this timetable (0: not known).

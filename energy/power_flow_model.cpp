@@ -5,6 +5,7 @@
 
 #include "energy/pair_bound.hpp"
 #include "energy/window_bound.hpp"
+#include "energy/window_refine.hpp"
 
 namespace ecorail::energy {
 
@@ -165,6 +166,16 @@ FleetLowerBound PowerFlowModel::lower_bound() const {
 
 std::vector<std::vector<int>> PowerFlowModel::relaxation_maximisers_s() const {
   return window_core_maximisers(*profile_, limits());
+}
+
+std::vector<int> PowerFlowModel::refined_headways_s(const std::vector<int>& headways_s, int threads,
+                                                    double time_limit_s) const {
+  WindowRefineOptions o;
+  o.threads = threads;
+  o.time_limit_s = time_limit_s;
+  const WindowRefineSummary r = window_refine(*profile_, limits(), headways_s, o);
+  if (!r.applicable || r.headways_s == headways_s) return {};
+  return r.headways_s;
 }
 
 double PowerFlowModel::pair_sum_J(const std::vector<int>& departures_s) const {

@@ -45,6 +45,9 @@ class PowerFlowModel : public FleetEnergyModel {
   FleetLowerBound lower_bound() const override;
   // The window bound's maximisers in the core (energy/window_bound.hpp).
   std::vector<std::vector<int>> relaxation_maximisers_s() const override;
+  // The window terms' exact DP near the sequence (energy/window_refine.hpp).
+  std::vector<int> refined_headways_s(const std::vector<int>& headways_s, int threads,
+                                      double time_limit_s) const override;
   double pair_sum_J(const std::vector<int>& departures_s) const override;
   std::unique_ptr<TripPricer> make_trip_pricer(const std::vector<int>& departures_s,
                                                double screen_step_s, int threads) const override;

@@ -9,44 +9,19 @@
 #include <limits>
 #include <stdexcept>
 
+#include "energy/window_terms.hpp"
+
 namespace ecorail::energy {
 
 namespace {
 
 constexpr double kNone = -std::numeric_limits<double>::infinity();
 
-// Traction and regenerated energy (J) of one train per bin of a grid of q bins a second.
-struct Grid {
-  int q = 1;
-  long bins = 0;
-  std::vector<double> R, T;
-  double r(long i) const { return i >= 0 && i < bins ? R[static_cast<std::size_t>(i)] : 0.0; }
-  double t(long i) const { return i >= 0 && i < bins ? T[static_cast<std::size_t>(i)] : 0.0; }
-};
-
-Grid grid_of(const PowerProfile& p, int q) {
-  const int tps = p.ticks_per_second();
-  const int per = tps / q;
-  Grid g;
-  g.q = q;
-  g.bins = (p.span_bins() + per - 1) / per + 1;
-  std::vector<MicroJoules> r(g.bins, 0), t(g.bins, 0);
-  for (const PowerBin& b : p.bins()) {
-    r[b.offset / per] += b.regen;
-    t[b.offset / per] += b.traction;
-  }
-  g.R.resize(g.bins);
-  g.T.resize(g.bins);
-  for (long i = 0; i < g.bins; ++i) g.R[i] = to_joules(r[i]), g.T[i] = to_joules(t[i]);
-  return g;
-}
-
-// The largest divisor of tps that is at most want.
-int divisor_at_most(int tps, int want) {
-  for (int q = std::min(tps, want); q > 1; --q)
-    if (tps % q == 0) return q;
-  return 1;
-}
+using window_terms::active_seconds;
+using window_terms::core_min_s;
+using window_terms::divisor_at_most;
+using window_terms::Grid;
+using window_terms::grid_of;
 
 // Pair tables on the 1 s grid: Q(g, s) what a train at offset >= s exchanges with one g seconds
 // behind it (both directions), S(s) a train's own bins from s, P(g) = Q(g, g) the whole
@@ -133,19 +108,6 @@ struct Tables {
   double active_s = 0.0;
 };
 
-// L: from a departure to the end of the last bin with power, in whole seconds.
-int active_seconds(const PowerProfile& profile) {
-  const int tps = profile.ticks_per_second();
-  long last = 0;
-  for (const PowerBin& b : profile.bins()) last = std::max<long>(last, b.offset);
-  return static_cast<int>((last + tps) / tps);  // ceil((last + 1) / tps)
-}
-
-// The least headway of the core: four of them span L, so no train is ever fifth newest.
-int core_min_s(int active_s, const FleetLimits& p) {
-  return std::clamp((active_s + 3) / 4, p.headway_min_s, p.headway_max_s + 1);
-}
-
 // The least float not below v (-inf stays -inf).
 float float_up(double v) {
   float f = static_cast<float>(v);
@@ -214,9 +176,7 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
   }
   // 2. Core triples, exactly on the fine grid: G3 of the window plus the fourth train's
   // increment from t_{k+3} on.
-  std::vector<long> nz;  // bins of the fine grid with power
-  for (long i = 0; i < gf.bins; ++i)
-    if (gf.R[i] != 0.0 || gf.T[i] != 0.0) nz.push_back(i);
+  const window_terms::ExactTerms exact(profile, qf);
   const long q = qf;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int a = hc; a <= hmax; ++a) {
@@ -224,14 +184,7 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
     for (int b = hc; b <= hmax; ++b) {
       three(gf, b * q, (a + b) * q, hmax * q, cum);
       for (int c = hc; c <= hmax; ++c) {
-        const long s3 = (static_cast<long>(a) + b + c) * q;
-        double x4 = 0.0;
-        for (auto it = std::lower_bound(nz.begin(), nz.end(), s3); it != nz.end(); ++it) {
-          const long tau = *it;
-          const double r3 = gf.r(tau - a * q) + gf.r(tau - (a + b) * q) + gf.r(tau - s3);
-          const double t3 = gf.t(tau - a * q) + gf.t(tau - (a + b) * q) + gf.t(tau - s3);
-          x4 += std::min(gf.R[tau] + r3, gf.T[tau] + t3) - std::min(r3, t3);
-        }
+        const double x4 = exact.fourth(a, b, c);
         Wat(cl.cell(a), cl.cell(b), cl.cell(c)) = cum[c * q] + x4;
       }
     }

@@ -243,9 +243,21 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   report("periodic regimes", 0.0, bound_used);
   bool relaxed = false;  // a start from the relaxation was added
   if (options.relaxed_start && !p.windowed()) {
-    const std::vector<int> h = relaxed_start_headways(model.relaxation_maximisers_s(), p);
-    std::vector<int> departures = h.empty() ? h : departures_from_headways(h);
-    if (!h.empty() && departures_problem(p, departures).empty()) {
+    // Every join of the maximisers near the span, priced on the annealing's grid side by side:
+    // the best is the start (ties: the first).
+    const std::vector<std::vector<int>> joins =
+        relaxed_start_candidates(model.relaxation_maximisers_s(), p);
+    std::vector<double> used(joins.size(), -1.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (long i = 0; i < static_cast<long>(joins.size()); ++i) {
+      const std::vector<int> d = departures_from_headways(joins[i]);
+      if (departures_problem(p, d).empty()) used[i] = coarse->evaluate(d).total.used_regen_J;
+    }
+    std::vector<int> departures;
+    const auto best_join = std::max_element(used.begin(), used.end());
+    if (best_join != used.end() && *best_join >= 0.0)
+      departures = departures_from_headways(joins[best_join - used.begin()]);
+    if (!departures.empty()) {
       starts.push_back(std::move(departures));
       start_temperature.push_back(options.reanneal_temperature);
       method_starts += "the bound's relaxation, ";
@@ -294,6 +306,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     std::vector<int> best;
     MicroJoules substation = 0;
     bool stopped = false;
+    int refinements = 0;  // exact refinements that gained
   };
   const auto search_round = [&](const std::vector<std::vector<int>>& start_of,
                                 const std::vector<std::uint64_t>& run_id,
@@ -353,6 +366,29 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     }
     out.best = candidates[best_c];
     out.substation = polished[best_c];
+    // The model's exact search near the best moves many headways at once where the polish's
+    // one-train moves had stopped; the polish then goes on from its result, while either gains.
+    const int window = options.polish_window_s;
+    for (int cycle = 0; options.exact_refine && !p.windowed() && cycle < 4; ++cycle) {
+      if (past(t0, search_limit)) {
+        out.stopped = true;
+        break;
+      }
+      const double left = search_limit > 0.0 ? search_limit - seconds_since(t0) : 0.0;
+      const std::vector<int> h =
+          model.refined_headways_s(headways_from_departures(out.best), threads, left);
+      if (h.empty()) break;
+      std::vector<int> t = departures_from_headways(h);
+      const std::unique_ptr<FleetBalance> balance = model.make_balance(threads);
+      bool stop = false;
+      s.moves += polish(*balance, p, t, window, 50, t0, search_limit, &stop);
+      out.stopped |= stop;
+      if (balance->substation() >= out.substation) break;
+      out.best = std::move(t);
+      out.substation = balance->substation();
+      ++out.refinements;
+      if (stop) break;
+    }
     return out;
   };
 
@@ -372,6 +408,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   Round best = search_round(start_of, run_id, temperature, runs == 0 ? 0 : moves,
                             plan.anneal_share_of_time_limit * search_limit);
   s.time_limit_reached = best.stopped;
+  s.refinements = best.refinements;
   // A start priced on the model's grid better than every polished run stays the result.
   if (plan.price_starts && best_start_substation < best.substation)
     best.best = starts[best_start], best.substation = best_start_substation;
@@ -399,6 +436,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       break;
     }
     ++s.rounds;
+    s.refinements += r.refinements;
     if (r.substation < best.substation) best.best = r.best, best.substation = r.substation;
     report("round " + std::to_string(round), used_of(best.substation), bound_used);
   }
@@ -407,6 +445,9 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   out.evaluation = model.evaluate(best.best);
   s.method = method_starts + "annealing (" + std::to_string(runs) + " runs, " +
              std::to_string(s.rounds) + " further rounds) and polish" + plan.method_note +
+             (s.refinements > 0
+                  ? ", exact refinement on the core (" + std::to_string(s.refinements) + " gained)"
+                  : "") +
              (bound.name.empty() ? "" : ", " + bound.name);
   s.used_regen_J = out.evaluation.used_regen_J();
   s.substation_J = out.evaluation.total.substation_J();

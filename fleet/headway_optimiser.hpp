@@ -69,6 +69,10 @@ struct HeadwayOptimiserOptions {
   bool relaxed_start = true;
   // With peak windows the annealing also shifts blocks of consecutive trains (classes kept).
   bool block_moves = true;
+  // Without peak windows, each round's best goes through the model's exact search near it
+  // (FleetEnergyModel::refined_headways_s) and the polish on the model's grid again, while
+  // either gains.
+  bool exact_refine = true;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
@@ -92,7 +96,8 @@ struct HeadwayOptimiserSummary {
   double pair_sum_J = 0.0;
   long moves = 0;
   long dp_states = 0;
-  int rounds = 0;  // anytime rounds completed after the first
+  int rounds = 0;       // anytime rounds completed after the first
+  int refinements = 0;  // exact refinements (and polishes after them) that gained
   double wall_s = 0.0;
   bool time_limit_reached = false;
   std::string message;

@@ -20,6 +20,15 @@ namespace ecorail::fleet {
 std::vector<int> relaxed_start_headways(const std::vector<std::vector<int>>& maximisers_s,
                                         const FleetProblem& problem);
 
+// Every join of two maximisers (a prefix of one, the suffix of the other, both orders, each at
+// the point nearest the span) that misses the span by at most a second a headway, closed as
+// above, without repeats; the nearest join alone when none does. The relaxation's value of a
+// join is not its used energy (the maximiser nearest the span is not always the best part), so
+// the search prices them and starts from the best: on question 2.1 the nearest join used
+// 5 726 784.8 kJ and the best 5 785 582.7 kJ (docs/fleet.md).
+std::vector<std::vector<int>> relaxed_start_candidates(
+    const std::vector<std::vector<int>>& maximisers_s, const FleetProblem& problem);
+
 // Closes span_s - sum(h) by one-second steps spread evenly over h within [lo_s, hi_s]; false
 // when the limits cannot hold the span (h is then unchanged).
 bool spread_to_span(std::vector<int>& headways_s, int span_s, int lo_s, int hi_s);

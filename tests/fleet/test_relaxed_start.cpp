@@ -2,9 +2,10 @@
 // the problem (trains - 1 headways within the limits summing to the span), a join that already
 // meets the span is taken as it is (checked against every join by brute force), and the seconds
 // still missing are spread evenly (away from the limits no headway moves by more than its share,
-// rounded up).
+// rounded up); the candidates the search prices are every join near the span.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
@@ -81,6 +82,49 @@ TEST(RelaxedStart, AJoinThatMeetsTheSpanIsTakenAsItIs) {
         }
     EXPECT_TRUE(is_exact_join) << c;
   }
+}
+
+// The candidates the search prices: each a timetable of the problem, no repeats, and, by brute
+// force over every ordered pair and cut, every join within a second a headway of the span is
+// among them (closed to the span), the nearest join included.
+TEST(RelaxedStart, CandidatesAreEveryNearJoinClosedToTheSpan) {
+  FleetProblem p;
+  p.trains = 9;  // 8 headways
+  p.headway_min_s = 100;
+  p.headway_max_s = 200;
+  int several = 0;
+  for (std::uint64_t c = 0; c < 100; ++c) {
+    std::vector<std::vector<int>> m(4, std::vector<int>(8));
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (int k = 0; k < 8; ++k)
+        m[i][k] = (i % 2 ? 150 : 100) + static_cast<int>(draw(c * 100 + i * 10 + k) % 51);
+    p.span_s = 8 * 125 + static_cast<int>(draw(c + 5) % 200);
+    const std::vector<std::vector<int>> cands = relaxed_start_candidates(m, p);
+    ASSERT_FALSE(cands.empty()) << c;
+    for (std::size_t i = 0; i < cands.size(); ++i) {
+      EXPECT_EQ(departures_problem(p, departures_from_headways(cands[i])), "") << c;
+      for (std::size_t j = 0; j < i; ++j) EXPECT_NE(cands[i], cands[j]) << c;
+    }
+    EXPECT_NE(std::find(cands.begin(), cands.end(), relaxed_start_headways(m, p)), cands.end())
+        << c << ": the nearest join";
+    for (const auto& a : m)
+      for (const auto& b : m) {
+        // The first cut nearest the span for this pair.
+        long best = -1;
+        std::vector<int> join;
+        for (int k = 0; k <= 8; ++k) {
+          std::vector<int> j(a.begin(), a.begin() + k);
+          j.insert(j.end(), b.begin() + k, b.end());
+          const long miss = std::labs(sum(j) - p.span_s);
+          if (best < 0 || miss < best) best = miss, join = j;
+        }
+        if (best > 8) continue;
+        ASSERT_TRUE(spread_to_span(join, p.span_s, p.headway_min_s, p.headway_max_s));
+        EXPECT_NE(std::find(cands.begin(), cands.end(), join), cands.end()) << c;
+      }
+    several += cands.size() > 1;
+  }
+  EXPECT_GT(several, 10) << "the brute force must see several candidates";
 }
 
 TEST(RelaxedStart, MaximisersMissingTheSpanGiveATimetableOfTheProblem) {
