@@ -21,26 +21,26 @@ constexpr double kNone = -std::numeric_limits<double>::infinity();
 
 using Triple = std::array<int, 3>;
 
-// The window terms one pass reads: every W of three consecutive candidates (computed in
-// parallel, each a pure function, so the values do not depend on the thread count) and the S and
-// E of the ends.
-struct PassTerms {
+// The window terms the passes read, kept from pass to pass: every W of three consecutive
+// candidates (computed in parallel, each a pure function, so the values do not depend on the
+// thread count) and the S and E of the ends.
+struct TermCache {
   std::map<Triple, double> W;
   std::map<std::array<int, 2>, double> S, E;
 };
 
+// Adds the terms a pass from h reads (each headway within +-d, in [lo, hi]) to the cache.
 void compute_terms(const window_terms::ExactTerms& terms, const std::vector<int>& h, int d, int lo,
-                   int hi, std::map<Triple, double>& cache, int threads, PassTerms& out) {
+                   int hi, int threads, TermCache& cache) {
   const int n = static_cast<int>(h.size());
+  const auto in = [&](int x) { return x >= lo && x <= hi; };
   std::vector<Triple> wanted;
   for (int j = 2; j < n; ++j)
     for (int a = -d; a <= d; ++a)
       for (int b = -d; b <= d; ++b)
         for (int c = -d; c <= d; ++c) {
           const Triple t{h[j - 2] + a, h[j - 1] + b, h[j] + c};
-          if (std::all_of(t.begin(), t.end(), [&](int x) { return x >= lo && x <= hi; }) &&
-              !cache.count(t))
-            wanted.push_back(t);
+          if (std::all_of(t.begin(), t.end(), in) && !cache.W.count(t)) wanted.push_back(t);
         }
   std::sort(wanted.begin(), wanted.end());
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
@@ -48,27 +48,18 @@ void compute_terms(const window_terms::ExactTerms& terms, const std::vector<int>
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (long i = 0; i < static_cast<long>(wanted.size()); ++i)
     values[i] = terms.W(wanted[i][0], wanted[i][1], wanted[i][2]);
-  for (std::size_t i = 0; i < wanted.size(); ++i) cache.emplace(wanted[i], values[i]);
-  out.W.clear();
-  for (int j = 2; j < n; ++j)
-    for (int a = -d; a <= d; ++a)
-      for (int b = -d; b <= d; ++b)
-        for (int c = -d; c <= d; ++c) {
-          const Triple t{h[j - 2] + a, h[j - 1] + b, h[j] + c};
-          const auto it = cache.find(t);
-          if (it != cache.end()) out.W.emplace(t, it->second);
-        }
+  for (std::size_t i = 0; i < wanted.size(); ++i) cache.W.emplace(wanted[i], values[i]);
   for (int a = -d; a <= d; ++a)
     for (int b = -d; b <= d; ++b) {
       const int x = h[0] + a, y = h[1] + b, u = h[n - 2] + a, v = h[n - 1] + b;
-      if (x >= lo && x <= hi && y >= lo && y <= hi) out.S[{x, y}] = terms.S(x, y);
-      if (u >= lo && u <= hi && v >= lo && v <= hi) out.E[{u, v}] = terms.E(u, v);
+      if (in(x) && in(y) && !cache.S.count({x, y})) cache.S[{x, y}] = terms.S(x, y);
+      if (in(u) && in(v) && !cache.E.count({u, v})) cache.E[{u, v}] = terms.E(u, v);
     }
 }
 
 // One pass: the best changes (each within +-d, the sum kept, partial sums within +-C) of h.
 // Returns the best value; *changes the changes.
-double best_changes(const std::vector<int>& h, int d, int C, int lo, int hi, const PassTerms& t,
+double best_changes(const std::vector<int>& h, int d, int C, int lo, int hi, const TermCache& t,
                     std::vector<int>* changes) {
   const int n = static_cast<int>(h.size());
   const int w = 2 * d + 1, cw = 2 * C + 1;
@@ -173,16 +164,15 @@ WindowRefineSummary window_refine(const PowerProfile& profile, const FleetLimits
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   const window_terms::ExactTerms terms(profile, profile.ticks_per_second());
   out.start_used_J = out.used_J = terms.value_J(headways_s);
-  std::map<Triple, double> cache;
-  PassTerms pass_terms;
+  TermCache cache;
   std::vector<int> changes;
   for (int pass = 0; pass < o.max_passes; ++pass) {
     if (o.time_limit_s > 0.0 && elapsed() > o.time_limit_s) {
       out.time_limit_reached = true;
       break;
     }
-    compute_terms(terms, out.headways_s, o.max_step_s, lo, hi, cache, threads, pass_terms);
-    best_changes(out.headways_s, o.max_step_s, o.max_shift_s, lo, hi, pass_terms, &changes);
+    compute_terms(terms, out.headways_s, o.max_step_s, lo, hi, threads, cache);
+    best_changes(out.headways_s, o.max_step_s, o.max_shift_s, lo, hi, cache, &changes);
     ++out.passes;
     std::vector<int> next = out.headways_s;
     for (std::size_t j = 0; j < next.size(); ++j) next[j] += changes[j];
@@ -193,7 +183,7 @@ WindowRefineSummary window_refine(const PowerProfile& profile, const FleetLimits
     out.headways_s = std::move(next);
     out.used_J = value;
   }
-  out.window_terms = static_cast<long>(cache.size());
+  out.window_terms = static_cast<long>(cache.W.size());
   out.wall_s = elapsed();
   return out;
 }

@@ -55,6 +55,8 @@ double ExactTerms::three(long off_mid, long off_old, long from, long upto) const
 
 double ExactTerms::S(int h1, int h2) const {
   const long q = g_.q;
+  // Train 1 alone over h1, then trains 2 and 1 over h2 (the third "train" lies past the grid,
+  // where it has no power).
   return self_cum_[std::min<long>(h1 * q, g_.bins)] + three(h1 * q, g_.bins, 0, h2 * q);
 }
 

@@ -76,10 +76,11 @@ std::vector<int> closed(std::vector<int> h, const FleetProblem& p) {
 std::vector<int> relaxed_start_headways(const std::vector<std::vector<int>>& maximisers_s,
                                         const FleetProblem& p) {
   // The best join over every ordered pair (a = b: the maximiser itself): the nearest the span.
+  const auto m = usable(maximisers_s, p);
   long best_miss = -1;
   std::vector<int> best;
-  for (const auto* a : usable(maximisers_s, p))
-    for (const auto* b : usable(maximisers_s, p)) {
+  for (const auto* a : m)
+    for (const auto* b : m) {
       long miss = 0;
       std::vector<int> j = nearest_join(*a, *b, p.span_s, &miss);
       if (best_miss < 0 || miss < best_miss) best_miss = miss, best = std::move(j);

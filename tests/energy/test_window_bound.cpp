@@ -44,19 +44,13 @@ struct Case {
   int trains, hmin, hmax, span;
 };
 
-EnergyModelOptions tenth_of_a_second() {
-  EnergyModelOptions o;
-  o.time_step_s = 0.1;
-  return o;
-}
-
 // Headways 80-140 cover the core (from 120 s) and cells below it; the spans are chosen so that
 // some timetables are all-core and some are not.
 TEST(WindowBound, EveryTimetableBelowItsRelaxedValueAndTheBoundAboveTheOptimum) {
   for (const Case c : {Case{3, 80, 200, 280}, Case{4, 80, 140, 380}, Case{5, 90, 140, 500},
                        Case{6, 110, 130, 620}}) {
     const FleetProblem p = testing::small_fleet(c.trains, c.hmin, c.hmax, c.span);
-    const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+    const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
     WindowBoundOptions wo;
     wo.short_cell_s = 7;
     wo.bound_ticks_per_second = 10;  // the model's grid: exact on the core
@@ -108,7 +102,7 @@ TEST(WindowBound, EveryTimetableBelowItsRelaxedValueAndTheBoundAboveTheOptimum) 
 // bound does not depend on the thread count.
 TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
   const FleetProblem p = testing::small_fleet(8, 90, 160, 7 * 128);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   WindowBoundOptions wo;
   wo.max_dual_evaluations = 60;
   const WindowBound bound = window_used_regen_bound(fleet.profile(), limits_of(p), wo);
@@ -136,7 +130,7 @@ TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
 // shortfall from the brute-force optimum.
 TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
   const FleetProblem p = testing::small_fleet(5, 90, 140, 500);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   auto balance = fleet.make_balance();
   double best = 0.0;
   for_each_timetable(p, [&](const std::vector<int>& h) {
@@ -163,7 +157,7 @@ TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
 // power-flow model offers them; a model without the capability offers none.
 TEST(WindowBound, CoreMaximisersAreTheBestSequencesOfTheirSum) {
   const FleetProblem p = testing::small_fleet(5, 90, 150, 540);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   const WindowBound bound = window_used_regen_bound(fleet.profile(), limits_of(p));
   ASSERT_TRUE(bound.applicable) << bound.why_not;
   const int hc = bound.core_min_s, hmax = p.headway_max_s;
@@ -195,7 +189,7 @@ TEST(WindowBound, CoreMaximisersAreTheBestSequencesOfTheirSum) {
     EXPECT_GE(own, best - 1e-7 * best - 1e-3) << "maximiser of sum " << sum;
   }
   EXPECT_TRUE(above && below) << "the maximisers' sums bracket the span";
-  EnergyModelOptions overlap = tenth_of_a_second();
+  EnergyModelOptions overlap = testing::tenth_of_a_second();
   overlap.model = "overlap";
   EXPECT_TRUE(TestFleet(testing::small_pattern().trip, p, overlap)
                   .model()
@@ -205,7 +199,7 @@ TEST(WindowBound, CoreMaximisersAreTheBestSequencesOfTheirSum) {
 
 TEST(WindowBound, NotApplicableWithSectionsOrPeakClasses) {
   const FleetProblem p = testing::small_fleet(4, 80, 140, 330);
-  EnergyModelOptions o = tenth_of_a_second();
+  EnergyModelOptions o = testing::tenth_of_a_second();
   o.model = "sections";
   o.section_boundaries_m = {2000.0};
   const TestFleet sections(testing::small_pattern().trip, p, o);
@@ -214,7 +208,7 @@ TEST(WindowBound, NotApplicableWithSectionsOrPeakClasses) {
   FleetProblem peak = p;
   peak.peak_windows = {{0, 100}};
   EXPECT_EQ(limits_of(peak).headway_classes, 2);
-  const TestFleet power_flow(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet power_flow(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   EXPECT_FALSE(window_used_regen_bound(power_flow.profile(), limits_of(peak)).applicable);
   std::string why;
   WindowBoundOptions bad;

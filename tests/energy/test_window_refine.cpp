@@ -21,12 +21,6 @@ using energy::window_refine;
 using energy::WindowRefineOptions;
 using energy::WindowRefineSummary;
 
-EnergyModelOptions tenth_of_a_second() {
-  EnergyModelOptions o;
-  o.time_step_s = 0.1;
-  return o;
-}
-
 double used_J(const TestFleet& fleet, const std::vector<int>& h) {
   auto balance = fleet.make_balance();
   balance->place_all(departures_from_headways(h));
@@ -52,7 +46,7 @@ void for_each_neighbour(const std::vector<int>& h, int d, int lo, int hi,
 
 TEST(WindowRefine, TheWindowTermsSumToTheUsedEnergyOnTheCore) {
   const FleetProblem p = testing::small_fleet(7, 100, 150, 6 * 130);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   const energy::window_terms::ExactTerms terms(fleet.profile(), fleet.profile().ticks_per_second());
   for (const std::vector<int>& h : {std::vector<int>{130, 130, 130, 130, 130, 130},
                                     {120, 140, 125, 135, 150, 110},
@@ -70,7 +64,7 @@ TEST(WindowRefine, TheWindowTermsSumToTheUsedEnergyOnTheCore) {
 
 TEST(WindowRefine, OnePassFindsTheBestSequenceOfItsNeighbourhood) {
   const FleetProblem p = testing::small_fleet(7, 100, 150, 6 * 130);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   // The core of the trip (about 480 s), within the limits.
   const int lo = energy::window_terms::core_min_s(
                 energy::window_terms::active_seconds(fleet.profile()), limits_of(p)),
@@ -108,7 +102,7 @@ TEST(WindowRefine, OnePassFindsTheBestSequenceOfItsNeighbourhood) {
 
 TEST(WindowRefine, MorePassesNeverLoseAndThreadsAgree) {
   const FleetProblem p = testing::small_fleet(12, 100, 150, 11 * 132);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   std::vector<int> start(11, 132);
   WindowRefineOptions one;
   one.max_passes = 1;
@@ -131,7 +125,7 @@ TEST(WindowRefine, MorePassesNeverLoseAndThreadsAgree) {
 
 TEST(WindowRefine, AHeadwayBelowTheCoreOrABadSumIsNotRefined) {
   const FleetProblem p = testing::small_fleet(5, 100, 150, 4 * 125);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   const std::vector<int> below{110, 130, 130, 130};
   const WindowRefineSummary r = window_refine(fleet.profile(), limits_of(p), below);
   EXPECT_FALSE(r.applicable);
@@ -152,7 +146,7 @@ TEST(WindowRefine, AHeadwayBelowTheCoreOrABadSumIsNotRefined) {
 // headway lies in the core (from 122 s).
 TEST(WindowRefine, TheOptimiserNeverLosesByIt) {
   const FleetProblem p = testing::small_fleet(24, 122, 150, 23 * 134);
-  const TestFleet fleet(testing::small_pattern().trip, p, tenth_of_a_second());
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
   HeadwayOptimiserOptions with;
   with.moves_per_run = 200;
   with.threads = 1;

@@ -109,6 +109,13 @@ inline const PatternTrip& small_pattern() {
 }
 
 // A fleet of the small pattern: trains, headway range and span.
+// The models' options on a 0.1 s grid (cheap enough to enumerate small fleets).
+inline EnergyModelOptions tenth_of_a_second() {
+  EnergyModelOptions o;
+  o.time_step_s = 0.1;
+  return o;
+}
+
 inline FleetProblem small_fleet(int trains, int headway_min_s, int headway_max_s, int span_s) {
   FleetProblem p;
   p.trains = trains;
