@@ -4,8 +4,9 @@
 // names (bins per second), with the bound on the used regenerated energy, the DP runs, the
 // dual's floor and the time of the tables as counters; the bound restricted to the core; and the
 // exact refinement (energy/window_refine.hpp) of the start the search builds from the core's
-// maximisers. The pattern and the model are built outside the timings. Run:
-// build/bench/bench_window_bound   (or under valgrind --tool=callgrind with
+// maximisers; the exact optimum of the core (energy/window_span_optimum.hpp). The pattern and the
+// model are built outside the timings. Run: build/bench/bench_window_bound   (or under valgrind
+// --tool=callgrind with
 // --benchmark_filter=.../1 for instruction counts)
 #include <benchmark/benchmark.h>
 
@@ -18,6 +19,7 @@
 #include "energy/power_flow_model.hpp"
 #include "energy/window_bound.hpp"
 #include "energy/window_refine.hpp"
+#include "energy/window_span_optimum.hpp"
 #include "fleet/fleet_pattern.hpp"
 #include "fleet/fleet_problem.hpp"
 #include "fleet/relaxed_start.hpp"
@@ -89,6 +91,40 @@ void BM_WindowRefineOfTheRelaxedStart(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_WindowRefineOfTheRelaxedStart)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The exact optimum of the core (energy/window_span_optimum.hpp: every headway in 522-660 s,
+// the span kept) on the model's grid, pruned by an incumbent: argument 0 the refined join nearest
+// the span (the refine bench's result), 1 the refined best join (where the search's first round
+// starts from): its used energy, whether it beat the incumbent, the relaxed bound, the states the
+// exact DP kept and the time of the window terms. A better incumbent prunes more.
+void BM_WindowSpanOptimumOfTheCore(benchmark::State& state) {
+  const energy::PowerFlowModel& m = reference_model();
+  std::vector<int> incumbent;
+  if (state.range(0) == 0) {
+    incumbent = energy::window_refine(m.profile(), m.limits(),
+                                      fleet::relaxed_start_headways(m.relaxation_maximisers_s(),
+                                                                    fleet::FleetProblem{}))
+                    .headways_s;
+  } else {
+    double best = -1.0;
+    for (const std::vector<int>& join :
+         fleet::relaxed_start_candidates(m.relaxation_maximisers_s(), fleet::FleetProblem{})) {
+      const energy::WindowRefineSummary r = energy::window_refine(m.profile(), m.limits(), join);
+      if (r.applicable && r.used_J > best) best = r.used_J, incumbent = r.headways_s;
+    }
+  }
+  for (auto _ : state) {
+    const energy::WindowSpanSummary r =
+        energy::window_span_optimum(m.profile(), m.limits(), incumbent);
+    state.counters["incumbent_used_kJ"] = r.incumbent_used_J / 1e3;
+    state.counters["used_kJ"] = r.used_J / 1e3;
+    state.counters["improved"] = r.improved;
+    state.counters["relaxed_bound_kJ"] = r.dual_bound_J / 1e3;
+    state.counters["exact_states"] = static_cast<double>(r.exact_states);
+    state.counters["terms_s"] = r.terms_s;
+  }
+}
+BENCHMARK(BM_WindowSpanOptimumOfTheCore)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -157,4 +157,10 @@ std::vector<int> FleetEnergyModel::refined_headways_s(const std::vector<int>&, i
   return {};
 }
 
+ExactPartOptimum FleetEnergyModel::exact_part_optimum(const std::vector<int>&, int, double) const {
+  ExactPartOptimum out;
+  out.why_not = "the " + std::string(name()) + " model has no exact search on part of its domain";
+  return out;
+}
+
 }  // namespace ecorail::energy

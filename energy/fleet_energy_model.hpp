@@ -94,6 +94,20 @@ struct FleetLowerBound {
   bool exists() const { return used_regen_J == used_regen_J || substation_J == substation_J; }
 };
 
+// The best timetable of one part of the domain, proven by an exact search there
+// (FleetEnergyModel::exact_part_optimum): no timetable of that part uses more regenerated energy.
+// It says nothing of the rest of the domain.
+struct ExactPartOptimum {
+  bool proven = false;
+  std::string why_not;  // when not proven
+  std::string part;     // which timetables, e.g. "every headway in 522-660 s"
+  // Better than the incumbent given; empty when the incumbent is the part's optimum.
+  std::vector<int> headways_s;
+  double used_regen_J = 0.0;     // the part's optimum
+  double relaxed_bound_J = 0.0;  // the relaxation that pruned the search (above used_regen_J)
+  double wall_s = 0.0;
+};
+
 // The used energy as a function of the headways alone, when the model has one:
 // sum_k value(h_k) - sum_k penalty(h_k, h_k+1) (no penalty: separable).
 struct HeadwayDecomposition {
@@ -183,6 +197,12 @@ class FleetEnergyModel {
   // window terms' DP, energy/window_refine.hpp); empty when it has none, does not apply or finds
   // nothing better. time_limit_s (0: none) bounds it between its passes.
   virtual std::vector<int> refined_headways_s(const std::vector<int>& headways_s, int threads,
+                                              double time_limit_s) const;
+  // The optimum of the part of the domain where the model has an exact search (the power-flow
+  // model with one supply section: every headway in the core, energy/window_span_optimum.hpp),
+  // the incumbent's headways pruning it. Not proven by default, when it does not apply or when
+  // time_limit_s (0: none) stops it.
+  virtual ExactPartOptimum exact_part_optimum(const std::vector<int>& incumbent_s, int threads,
                                               double time_limit_s) const;
   // (bound - result) / result's substation energy, in the bound's own form.
   double gap_fraction(const FleetEvaluation& result, const FleetLowerBound& bound) const;

@@ -6,6 +6,7 @@
 #include "energy/pair_bound.hpp"
 #include "energy/window_bound.hpp"
 #include "energy/window_refine.hpp"
+#include "energy/window_span_optimum.hpp"
 
 namespace ecorail::energy {
 
@@ -176,6 +177,27 @@ std::vector<int> PowerFlowModel::refined_headways_s(const std::vector<int>& head
   const WindowRefineSummary r = window_refine(*profile_, limits(), headways_s, o);
   if (!r.applicable || r.headways_s == headways_s) return {};
   return r.headways_s;
+}
+
+ExactPartOptimum PowerFlowModel::exact_part_optimum(const std::vector<int>& incumbent_s,
+                                                    int threads, double time_limit_s) const {
+  WindowSpanOptions o;
+  o.threads = threads;
+  o.time_limit_s = time_limit_s;
+  const WindowSpanSummary r = window_span_optimum(*profile_, limits(), incumbent_s, o);
+  ExactPartOptimum out;
+  out.wall_s = r.wall_s;
+  if (!r.complete()) {
+    out.why_not = r.why_not;
+    return out;
+  }
+  out.proven = true;
+  out.part = "every headway in " + std::to_string(r.lowest_headway_s) + "-" +
+             std::to_string(r.highest_headway_s) + " s";
+  if (r.improved) out.headways_s = r.headways_s;
+  out.used_regen_J = r.used_J;
+  out.relaxed_bound_J = r.dual_bound_J;
+  return out;
 }
 
 double PowerFlowModel::pair_sum_J(const std::vector<int>& departures_s) const {

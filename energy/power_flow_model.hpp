@@ -48,6 +48,8 @@ class PowerFlowModel : public FleetEnergyModel {
   // The window terms' exact DP near the sequence (energy/window_refine.hpp).
   std::vector<int> refined_headways_s(const std::vector<int>& headways_s, int threads,
                                       double time_limit_s) const override;
+  ExactPartOptimum exact_part_optimum(const std::vector<int>& incumbent_s, int threads,
+                                      double time_limit_s) const override;
   double pair_sum_J(const std::vector<int>& departures_s) const override;
   std::unique_ptr<TripPricer> make_trip_pricer(const std::vector<int>& departures_s,
                                                double screen_step_s, int threads) const override;

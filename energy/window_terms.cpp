@@ -65,6 +65,15 @@ double ExactTerms::W(int a, int b, int c) const {
   return three(b * q, (a + b) * q, 0, c * q) + fourth(a, b, c);
 }
 
+void ExactTerms::W_row(int a, int b, int c_lo, int c_hi, double* out) const {
+  const long q = g_.q;
+  double s = three(b * q, (a + b) * q, 0, c_lo * q);
+  for (int c = c_lo; c <= c_hi; ++c) {
+    if (c > c_lo) s += three(b * q, (a + b) * q, (c - 1) * q, c * q);
+    out[c - c_lo] = s + fourth(a, b, c);
+  }
+}
+
 double ExactTerms::fourth(int a, int b, int c) const {
   const long q = g_.q;
   double v = 0.0;

@@ -45,6 +45,8 @@ class ExactTerms {
   double S(int h1, int h2) const;
   double W(int a, int b, int c) const;
   double E(int a, int b) const;
+  // W(a, b, c) for c = c_lo..c_hi into out[0..c_hi - c_lo], the window of three summed once.
+  void W_row(int a, int b, int c_lo, int c_hi, double* out) const;
   // W's second part: what the oldest of the window's three (the fourth newest once the next
   // train departs, a + b + c after it) adds from then on.
   double fourth(int a, int b, int c) const;

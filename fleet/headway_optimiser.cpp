@@ -159,6 +159,13 @@ std::string HeadwayOptimiserSummary::FullReport() const {
                   pair_sum_J / 1e3, 100.0 * (pair_sum_J - used_regen_J) / substation_J);
     out += buf;
   }
+  if (!exact_part.empty()) {
+    std::snprintf(buf, sizeof buf,
+                  "  exact search on part of the domain: no timetable with %s uses more than "
+                  "%.1f kJ\n",
+                  exact_part.c_str(), exact_part_used_J / 1e3);
+    out += buf;
+  }
   if (!message.empty()) out += "  " + message + "\n";
   return out;
 }
@@ -418,6 +425,27 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   };
   report("round 0", used_of(best.substation), bound_used);
 
+  // The model's exact search on part of the domain, with a time limit only (it may take
+  // minutes; it gives up at once when it would not fit): its optimum replaces the result when
+  // better.
+  if (options.exact_part && options.time_limit_s > 0.0 && !p.windowed() && !best.stopped &&
+      !past(t0, search_limit)) {
+    const energy::ExactPartOptimum x = model.exact_part_optimum(
+        headways_from_departures(best.best), threads, search_limit - seconds_since(t0));
+    if (x.proven) {
+      s.exact_part = x.part;
+      s.exact_part_used_J = x.used_regen_J;
+      if (!x.headways_s.empty()) {
+        std::vector<int> d = departures_from_headways(x.headways_s);
+        const std::unique_ptr<FleetBalance> balance = model.make_balance(threads);
+        balance->place_all(d);
+        if (balance->substation() < best.substation)
+          best.best = std::move(d), best.substation = balance->substation();
+      }
+    }
+    report("exact optimum of part of the domain", used_of(best.substation), bound_used);
+  }
+
   // Anytime rounds: while time remains (with a limit) or for options.rounds rounds (without),
   // two runs a round: one re-anneals the best so far from a lower temperature, one anneals a
   // start afresh with new draws. A round a limit cuts short is dropped, so a run with more time
@@ -443,12 +471,15 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
 
   out.headways_s = headways_from_departures(best.best);
   out.evaluation = model.evaluate(best.best);
-  s.method = method_starts + "annealing (" + std::to_string(runs) + " runs, " +
-             std::to_string(s.rounds) + " further rounds) and polish" + plan.method_note +
-             (s.refinements > 0
-                  ? ", exact refinement on the core (" + std::to_string(s.refinements) + " gained)"
-                  : "") +
-             (bound.name.empty() ? "" : ", " + bound.name);
+  s.method =
+      method_starts + "annealing (" + std::to_string(runs) + " runs, " + std::to_string(s.rounds) +
+      " further rounds) and polish" + plan.method_note +
+      (s.refinements > 0
+           ? ", exact refinement on the core (" + std::to_string(s.refinements) + " gained)"
+           : "") +
+      (s.exact_part.empty() ? ""
+                            : ", no timetable with " + s.exact_part + " is better (exact DP)") +
+      (bound.name.empty() ? "" : ", " + bound.name);
   s.used_regen_J = out.evaluation.used_regen_J();
   s.substation_J = out.evaluation.total.substation_J();
   s.bound_used_regen_J = bound.used_regen_J;

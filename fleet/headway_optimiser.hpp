@@ -73,6 +73,11 @@ struct HeadwayOptimiserOptions {
   // (FleetEnergyModel::refined_headways_s) and the polish on the model's grid again, while
   // either gains.
   bool exact_refine = true;
+  // With a time limit and without peak windows, after the first round: the model's exact
+  // search on part of the domain (FleetEnergyModel::exact_part_optimum; the power-flow model:
+  // every headway in the core) within the time left; its optimum replaces the result when
+  // better, and the summary names the part no timetable of which is better.
+  bool exact_part = true;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
@@ -98,6 +103,10 @@ struct HeadwayOptimiserSummary {
   long dp_states = 0;
   int rounds = 0;       // anytime rounds completed after the first
   int refinements = 0;  // exact refinements (and polishes after them) that gained
+  // When the model's exact search on part of the domain ran to its end: which part
+  // (e.g. "every headway in 522-660 s") and its optimum; no timetable of that part uses more.
+  std::string exact_part;
+  double exact_part_used_J = 0.0;
   double wall_s = 0.0;
   bool time_limit_reached = false;
   std::string message;

@@ -95,6 +95,9 @@ nlohmann::json timetable_optimisation_json(const fleet::TimetableStudy& study,
                        {"gap_fraction_of_substation", sm.gap_fraction},
                        {"brief_report", sm.BriefReport()}};
   if (!sm.message.empty()) energy["summary"]["message"] = sm.message;
+  if (!sm.exact_part.empty())
+    energy["summary"]["exact_part"] = {{"timetables", "every timetable with " + sm.exact_part},
+                                       {"best_used_regen_kJ", sm.exact_part_used_J / 1e3}};
   if (o.pattern_search) energy["pattern_search"] = pattern_search_json(*o.pattern_search);
   add_study(energy, study, result.evaluation);
   return energy;

@@ -21,12 +21,6 @@ using energy::window_refine;
 using energy::WindowRefineOptions;
 using energy::WindowRefineSummary;
 
-double used_J(const TestFleet& fleet, const std::vector<int>& h) {
-  auto balance = fleet.make_balance();
-  balance->place_all(departures_from_headways(h));
-  return to_joules(balance->used());
-}
-
 // Every sequence within +-d of h, each in [lo, hi], with the same sum.
 void for_each_neighbour(const std::vector<int>& h, int d, int lo, int hi,
                         const std::function<void(const std::vector<int>&)>& f) {
@@ -56,7 +50,7 @@ TEST(WindowRefine, TheWindowTermsSumToTheUsedEnergyOnTheCore) {
     const int L = energy::window_terms::active_seconds(fleet.profile());
     for (std::size_t j = 0; j + 3 < h.size(); ++j)
       ASSERT_GE(h[j] + h[j + 1] + h[j + 2] + h[j + 3], L);
-    const double used = used_J(fleet, h);
+    const double used = fleet.used_J(h);
     EXPECT_GT(used, 0.0);
     EXPECT_NEAR(terms.value_J(h), used, 1e-9 * used + 1e-6);
   }
@@ -84,13 +78,13 @@ TEST(WindowRefine, OnePassFindsTheBestSequenceOfItsNeighbourhood) {
       double best = 0.0;
       int neighbours = 0;
       for_each_neighbour(start, d, lo, hi, [&](const std::vector<int>& h) {
-        best = std::max(best, used_J(fleet, h));
+        best = std::max(best, fleet.used_J(h));
         ++neighbours;
       });
       EXPECT_GT(neighbours, 10);
       EXPECT_NEAR(r.used_J, best, 1e-9 * best + 1e-6) << "step " << d;
-      EXPECT_NEAR(r.used_J, used_J(fleet, r.headways_s), 1e-9 * best + 1e-6);
-      EXPECT_NEAR(r.start_used_J, used_J(fleet, start), 1e-9 * best + 1e-6);
+      EXPECT_NEAR(r.used_J, fleet.used_J(r.headways_s), 1e-9 * best + 1e-6);
+      EXPECT_NEAR(r.start_used_J, fleet.used_J(start), 1e-9 * best + 1e-6);
       gained += best > r.start_used_J * (1 + 1e-9);
       EXPECT_EQ(std::accumulate(r.headways_s.begin(), r.headways_s.end(), 0), p.span_s);
       for (std::size_t j = 0; j < start.size(); ++j)
@@ -120,7 +114,7 @@ TEST(WindowRefine, MorePassesNeverLoseAndThreadsAgree) {
   EXPECT_GT(b.used_J, b.start_used_J) << "the uniform timetable is no local optimum here";
   EXPECT_EQ(b.headways_s, c.headways_s);
   EXPECT_EQ(b.used_J, c.used_J);
-  EXPECT_NEAR(b.used_J, used_J(fleet, b.headways_s), 1e-9 * b.used_J + 1e-6);
+  EXPECT_NEAR(b.used_J, fleet.used_J(b.headways_s), 1e-9 * b.used_J + 1e-6);
 }
 
 TEST(WindowRefine, AHeadwayBelowTheCoreOrABadSumIsNotRefined) {

@@ -65,6 +65,12 @@ class TestFleet {
     return power_flow().make_power_balance(std::move(profiles));
   }
   const PowerProfile& profile() const { return power_flow().profile(); }
+  // Used regenerated energy (J) of the power-flow balance with these headways.
+  double used_J(const std::vector<int>& headways_s) const {
+    auto balance = make_balance();
+    balance->place_all(departures_from_headways(headways_s));
+    return to_joules(balance->used());
+  }
   const energy::OverlapModel& overlap() const {
     return dynamic_cast<const energy::OverlapEnergyModel&>(*model_).overlap();
   }
