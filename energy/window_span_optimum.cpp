@@ -195,13 +195,13 @@ WindowSpanSummary window_span_optimum(const PowerProfile& profile, const FleetLi
 
   const double limit = o.time_limit_s;
   const auto out_of_time = [&] { return limit > 0.0 && elapsed() > limit; };
-  const auto stopped = [&](WindowSpanSummary& r) {
-    r.time_limit_reached = true;
-    r.why_not = "the time limit stopped it";
-    r.headways_s = incumbent_s;
-    r.used_J = r.incumbent_used_J;
-    r.wall_s = elapsed();
-    return r;
+  const auto stopped = [&] {
+    out.time_limit_reached = true;
+    out.why_not = "the time limit stopped it";
+    out.headways_s = incumbent_s;
+    out.used_J = out.incumbent_used_J;
+    out.wall_s = elapsed();
+    return out;
   };
   Terms t;
   const long rows = static_cast<long>(K) * K, probe = std::min<long>(rows, 4L * threads);
@@ -211,7 +211,7 @@ WindowSpanSummary window_span_optimum(const PowerProfile& profile, const FleetLi
     const double now = elapsed();
     return now > limit || (done == probe && now * static_cast<double>(rows) / probe > 0.6 * limit);
   };
-  if (!all_terms(exact, lo, K, threads, over_time, t)) return stopped(out);
+  if (!all_terms(exact, lo, K, threads, over_time, t)) return stopped();
   out.window_terms = static_cast<long>(t.W.size());
   out.terms_s = elapsed();
 
@@ -253,7 +253,7 @@ WindowSpanSummary window_span_optimum(const PowerProfile& profile, const FleetLi
       consider(mid, std::move(r));
     }
   }
-  if (out_of_time()) return stopped(out);
+  if (out_of_time()) return stopped();
   out.dual_bound_J = best_r.value;
   out.mu_J_per_s = best_mu;
   const std::vector<std::vector<double>>& F = best_r.F;
@@ -296,7 +296,7 @@ WindowSpanSummary window_span_optimum(const PowerProfile& profile, const FleetLi
     }
   }
   for (int j = 2; j < n; ++j) {
-    if (out_of_time()) return stopped(out);
+    if (out_of_time()) return stopped();
     const long lo_prev = p_lo(j - 1), lo_j = p_lo(j);
     const long w_prev = width, w_j = p_hi(j) - lo_j + 1;
     std::vector<int> cand;  // pairs (b, c) whose relaxed bound reaches the incumbent
@@ -341,18 +341,20 @@ WindowSpanSummary window_span_optimum(const PowerProfile& profile, const FleetLi
         if (out_v[k] != kNone) ++states, used[s] = 1;
     }
     out.exact_states += states;
-    // Keep the pairs with a state; their slots are renumbered in order.
-    std::vector<double> kept_v;
-    std::vector<std::uint8_t> kept_b;
-    int kept = 0;
+    // Keep the pairs with a state, moved down in place; their slots are renumbered in order.
+    std::size_t kept = 0;
     for (std::size_t s = 0; s < cand.size(); ++s) {
       if (!used[s]) continue;
-      slot[j][cand[s]] = kept++;
-      kept_v.insert(kept_v.end(), next.begin() + s * w_j, next.begin() + (s + 1) * w_j);
-      kept_b.insert(kept_b.end(), back[j].begin() + s * w_j, back[j].begin() + (s + 1) * w_j);
+      slot[j][cand[s]] = static_cast<int>(kept);
+      if (kept != s) {
+        std::copy_n(next.begin() + s * w_j, w_j, next.begin() + kept * w_j);
+        std::copy_n(back[j].begin() + s * w_j, w_j, back[j].begin() + kept * w_j);
+      }
+      ++kept;
     }
-    cur.swap(kept_v);
-    back[j].swap(kept_b);
+    next.resize(kept * w_j);
+    back[j].resize(kept * w_j);
+    cur.swap(next);
     width = w_j;
   }
   // 3. The end: the partial sum is the span.

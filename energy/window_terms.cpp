@@ -61,8 +61,9 @@ double ExactTerms::S(int h1, int h2) const {
 }
 
 double ExactTerms::W(int a, int b, int c) const {
-  const long q = g_.q;
-  return three(b * q, (a + b) * q, 0, c * q) + fourth(a, b, c);
+  double w = 0.0;
+  W_row(a, b, c, c, &w);
+  return w;
 }
 
 void ExactTerms::W_row(int a, int b, int c_lo, int c_hi, double* out) const {
