@@ -1,0 +1,182 @@
+// Random feasible timing-point journeys (dp/timing_journey.hpp), solved one after another: how
+// many meet every window on their re-simulation, and how their traction energy compares with the
+// witness run each journey was built around (a feasible run, so the optimum is no dearer). Each
+// journey is built from a random witness on a 3 km track with a 6 per mille rise over
+// 1000-1800 m (limit 80 km/h, the default train, --ds 10 --dv 0.5): full traction, a coast, then
+// in each stretch between passing points a burst of traction and a coast or a hold and a coast;
+// each passing point gets at random a time window of zero width at the witness's time, a latest
+// or an earliest bound there, bounds a few seconds either side, a latest bound with a speed window
+// around the witness's speed, or a zero-width time with a least speed; the stop the witness's
+// time exactly or a 10 s window ending there. Arg 0: three passing points, at rest at the start;
+// arg 1: the same with a moving start (1 to 6 m/s). 30 journeys each (docs/ttobench.md,
+// "Random windows"). A journey that misses a window is printed to stderr with its windows and
+// the solver's warnings.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include "data/train_io.hpp"
+#include "dp/section_engine.hpp"
+#include "dp/time_target.hpp"
+#include "dp/timing_journey.hpp"
+
+namespace {
+
+using ecorail::dp::TimingWindow;
+namespace physics = ecorail::physics;
+constexpr double kOpen = std::numeric_limits<double>::infinity();
+constexpr double kLength_m = 3000.0;
+constexpr int kPassingPoints = 3;
+constexpr int kJourneys = 30;
+
+physics::Route rise_track() {
+  std::vector<physics::RouteSegment> segs(3);
+  const double ends[] = {1000.0, 1800.0, kLength_m};
+  double start = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    segs[i].start_m = start;
+    segs[i].end_m = ends[i];
+    segs[i].gradient_permille = i == 1 ? 6.0 : 0.0;
+    segs[i].speed_limit_ms = 80.0 / 3.6;
+    start = ends[i];
+  }
+  return physics::Route(segs, 0.0, 1, "X0", "X1");
+}
+
+// Time and speed where a run passes s_m (linear between trace points).
+void passing(const physics::SimulationResult& sim, double s_m, double* t_s, double* v_ms) {
+  const auto& tr = sim.trace;
+  for (std::size_t k = 1; k < tr.size(); ++k) {
+    if (tr[k].s_m < s_m) continue;
+    const double w = (s_m - tr[k - 1].s_m) / (tr[k].s_m - tr[k - 1].s_m);
+    *t_s = tr[k - 1].t_s + w * (tr[k].t_s - tr[k - 1].t_s);
+    *v_ms = tr[k - 1].v_ms + w * (tr[k].v_ms - tr[k - 1].v_ms);
+    return;
+  }
+  *t_s = *v_ms = NAN;
+}
+
+struct Journey {
+  std::vector<TimingWindow> windows;
+  double witness_J = 0.0;
+};
+
+// A random journey around a random witness run (see the file's comment); false for a witness
+// that does not reach the stop.
+bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng, bool moving,
+                    Journey* out) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> s;
+  for (int k = 0; k < kPassingPoints; ++k) {
+    s.push_back(kLength_m * (k + 0.2 + 0.6 * u(rng)) / (kPassingPoints + 1));
+  }
+  const double v0 = moving ? 1.0 + 5.0 * u(rng) : 0.0;
+  physics::ControlProgram p = {{0.0, physics::Control::MaxTraction},
+                               {(0.3 + 0.5 * u(rng)) * s[0], physics::Control::Coast}};
+  for (int k = 0; k < kPassingPoints; ++k) {
+    const double a = s[k], b = k + 1 < kPassingPoints ? s[k + 1] : kLength_m;
+    const double y = a + (0.1 + 0.4 * u(rng)) * (b - a);
+    p.push_back({y, physics::Control::MaxTraction});
+    const bool hold = u(rng) < 0.5;
+    p.push_back(
+        {y + 30.0 + 80.0 * u(rng), hold ? physics::Control::Hold : physics::Control::Coast});
+    if (hold) p.push_back({y + 150.0 + 100.0 * u(rng), physics::Control::Coast});
+  }
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    if (!(p[i].from_m > p[i - 1].from_m)) return false;
+  }
+  if (p.back().from_m >= kLength_m - 50.0) return false;
+  const physics::SimulationResult w = engine.simulate(p, {0.0, v0}, 1.0);
+  if (!ecorail::dp::run_arrives(w)) return false;
+  out->witness_J = w.energy.traction_work_J;
+  out->windows = {{0.0, 0.0, 0.0, v0, v0}};
+  for (int k = 0; k < kPassingPoints; ++k) {
+    double t = NAN, v = NAN;
+    passing(w, s[k], &t, &v);
+    TimingWindow pw{s[k], -kOpen, kOpen, -kOpen, kOpen};
+    switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
+      case 0:
+        pw.earliest_s = pw.latest_s = t;
+        break;
+      case 1:
+        pw.latest_s = t;
+        break;
+      case 2:
+        pw.earliest_s = t;
+        break;
+      case 3:
+        pw.earliest_s = t - 3.0 * u(rng), pw.latest_s = t + 3.0 * u(rng);
+        break;
+      case 4:
+        pw.latest_s = t;
+        pw.min_speed_ms = v - 1.0 * u(rng), pw.max_speed_ms = v + 1.0 * u(rng);
+        break;
+      default:
+        pw.earliest_s = pw.latest_s = t;
+        pw.min_speed_ms = std::max(0.5, v - 2.0 * u(rng));
+    }
+    out->windows.push_back(pw);
+  }
+  const double arrive = w.running_time_s;
+  out->windows.push_back({kLength_m, u(rng) < 0.5 ? arrive : arrive - 10.0, arrive, 0.0, 0.0});
+  return true;
+}
+
+void BM_RandomTimingWindows(benchmark::State& state) {
+  const bool moving = state.range(0) == 1;
+  const physics::Train train = ecorail::data::default_train();
+  const physics::Route track = rise_track();
+  ecorail::dp::TimingJourneyOptions options;
+  options.engine.grid.ds_m = 10.0;
+  options.engine.grid.dv_kmh = 0.5;
+  options.engine.grid.substep_m = 5.0;
+  const ecorail::dp::SectionEngine engine(train, track, options.engine);
+  int met = 0, missed = 0, dearer = 0;
+  double worst_ratio = 0.0, slowest_s = 0.0;
+  for (auto _ : state) {
+    std::mt19937 rng(moving ? 3 : 2);
+    met = missed = dearer = 0;
+    worst_ratio = slowest_s = 0.0;
+    for (int made = 0; made < kJourneys;) {
+      Journey j;
+      if (!random_journey(engine, rng, moving, &j)) continue;
+      ++made;
+      const auto t0 = std::chrono::steady_clock::now();
+      const ecorail::dp::TimingJourneySolution sol =
+          ecorail::dp::solve_timing_journey(train, track, j.windows, options);
+      slowest_s = std::max(
+          slowest_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      if (!sol.windows_met || !sol.summary.IsSolutionUsable()) {
+        ++missed;
+        std::fprintf(stderr, "missed (journey %d):", made);
+        for (const TimingWindow& x : j.windows) {
+          std::fprintf(stderr, " [%.1f m: %.3f, %.3f s, %.3f, %.3f m/s]", x.position_m,
+                       x.earliest_s, x.latest_s, x.min_speed_ms, x.max_speed_ms);
+        }
+        for (const std::string& w : sol.summary.warnings) std::fprintf(stderr, "\n  %s", w.c_str());
+        std::fprintf(stderr, "\n");
+        continue;
+      }
+      ++met;
+      const double ratio = sol.summary.traction_energy_kJ * 1e3 / j.witness_J;
+      worst_ratio = std::max(worst_ratio, ratio);
+      if (ratio > 1.001) ++dearer;
+    }
+  }
+  state.counters["journeys"] = kJourneys;
+  state.counters["windows_met"] = met;
+  state.counters["windows_missed"] = missed;
+  state.counters["dearer_than_witness"] = dearer;
+  state.counters["worst_energy_to_witness"] = worst_ratio;
+  state.counters["slowest_solve_s"] = slowest_s;
+}
+BENCHMARK(BM_RandomTimingWindows)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
