@@ -458,12 +458,17 @@ class PartSolver {
           new_band = true;
         }
       }
-      // The most missed time window.
+      // The most missed time window (a zero-width one is missed beyond half of kExactTime_s,
+      // not half the window tolerance: passed 2 ms late, it did not bind and was reported
+      // missed).
       int worst = -1;
-      double worst_miss = 0.5 * options_.time_tolerance_s;
+      double worst_miss = 0.0;
       for (std::size_t k = 0; k < points_.size(); ++k) {
-        const double m = std::abs(time_miss_s(run, points_[k]));
-        if (m > worst_miss) worst = static_cast<int>(k), worst_miss = m;
+        const PartPoint& p = points_[k];
+        const double m = std::abs(time_miss_s(run, p));
+        const double limit =
+            0.5 * (p.earliest_s == p.latest_s ? kExactTime_s : options_.time_tolerance_s);
+        if (m > limit && m > worst_miss) worst = static_cast<int>(k), worst_miss = m;
       }
       if (worst < 0 && !new_band) break;
       if (worst < 0 && binding_.empty()) {
