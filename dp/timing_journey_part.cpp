@@ -746,13 +746,8 @@ class PartSolver {
   // Whether a passing window (time or speed, within the options' tolerances) that holds on
   // from's re-simulation is missed on to's.
   bool loses_a_window(const LambdaRun& from, const LambdaRun& to) const {
-    const double tol_v = units::kmh_to_ms(options_.speed_tolerance_kmh);
-    const double tol_t = options_.time_tolerance_s;
     auto holds = [&](const LambdaRun& r, const PartPoint& p) {
-      const TimingWindow& w = windows_[p.index];
-      const Passing at = passing_at(r.sim.trace, p.s_m);
-      return finite(at.t_s) && at.t_s >= p.earliest_s - tol_t && at.t_s <= p.latest_s + tol_t &&
-             at.v_ms >= w.min_speed_ms - tol_v && at.v_ms <= w.max_speed_ms + tol_v;
+      return std::abs(time_miss_s(r, p)) <= options_.time_tolerance_s && !speed_missed(r, p);
     };
     return std::any_of(points_.begin(), points_.end(),
                        [&](const PartPoint& p) { return holds(from, p) && !holds(to, p); });
@@ -800,9 +795,7 @@ class PartSolver {
     }
     if (!best) return false;
     run = std::move(*best);
-    // (The search's "found no run" note gives way to what was done instead.)
-    const auto no_run = std::find(notes_.begin(), notes_.end(), no_run_note(p));
-    if (no_run != notes_.end()) notes_.erase(no_run);
+    drop_no_run_note(p);
     notes_.push_back(format_text(
         "the price search for %s found no run that also meets the arrival on this grid; the run "
         "is stitched at its bound (the rest re-solved from there): every window holds, but the "
@@ -913,8 +906,7 @@ class PartSolver {
         exact_ = true;
         return;
       }
-      std::optional<LambdaRun> cand = newton_on_switches(from, residuals);
-      if (!cand) cand = continued_newton(from, residuals);
+      std::optional<LambdaRun> cand = newton_or_continued(from, residuals);
       if (!cand) cand = newton_without_short_phases(from, residuals);
       if (!cand) return;
       cand->cost_J = engine_.energy_cost_J(cand->sim);
@@ -946,8 +938,14 @@ class PartSolver {
     if (merged.program.size() == run.program.size()) return std::nullopt;
     merged.sim = engine_.simulate(merged.program, start_);
     ++evaluations_;
-    std::optional<LambdaRun> cand = newton_on_switches(merged, residuals);
-    if (!cand) cand = continued_newton(merged, residuals);
+    return newton_or_continued(merged, residuals);
+  }
+
+  // One Newton solve on run's switches, and by continuation when that stalls.
+  template <typename Residuals>
+  std::optional<LambdaRun> newton_or_continued(const LambdaRun& run, Residuals& residuals) {
+    std::optional<LambdaRun> cand = newton_on_switches(run, residuals);
+    if (!cand) cand = continued_newton(run, residuals);
     return cand;
   }
 
@@ -1088,11 +1086,7 @@ class PartSolver {
     meet_bindings_exactly(repaired);
     if (!holds_exactly(repaired, {}, false)) return false;
     run = std::move(repaired);
-    // (The search's "found no run" notes give way to what was done instead.)
-    for (const PartPoint& p : points_) {
-      const auto no_run = std::find(notes_.begin(), notes_.end(), no_run_note(p));
-      if (no_run != notes_.end()) notes_.erase(no_run);
-    }
+    for (const PartPoint& p : points_) drop_no_run_note(p);
     notes_.push_back(
         "the price search found no run that meets every window on this grid; its last run is "
         "moved onto the windows by its switch points: every window holds, but the run may not "
@@ -1183,6 +1177,11 @@ class PartSolver {
   std::string no_run_note(const PartPoint& p) const {
     return format_text("the price search for %s found no run that meets it",
                        point_name(p.index, windows_[p.index]).c_str());
+  }
+  // The search's "found no run" note for p gives way to what was done instead.
+  void drop_no_run_note(const PartPoint& p) {
+    const auto no_run = std::find(notes_.begin(), notes_.end(), no_run_note(p));
+    if (no_run != notes_.end()) notes_.erase(no_run);
   }
 
   // The price before binding point m searched for its passing time, the others held; run and
