@@ -31,6 +31,13 @@ struct ValueFunction {
   double at(const StageGrid& grid, int i, double v_ms) const;
   // The time price of the transition out of stage i.
   double price(int i) const { return stage_lambda.empty() ? lambda : stage_lambda[i]; }
+  // Bands on the transitions out of a stage (SpeedBand::at_fraction > 0), which the run's
+  // extraction must keep as the sweep did; the one out of stage i or nullptr.
+  std::vector<SpeedBand> transition_bands;
+  const SpeedBand* transition_band(int i) const {
+    return transition_bands.empty() ? nullptr : find_transition_band(i);
+  }
+  const SpeedBand* find_transition_band(int i) const;
 };
 
 void backward_sweep(const StageGrid& grid, const TransitionTable& table, double lambda,

@@ -23,10 +23,25 @@ struct Scorer {
     const int next = grid.next_stage_after(s);
     const physics::Advance adv = motion.advance(s, e, grid.position(next), c, step);
     if (adv.stalled) return kInfeasible;
+    if (!inside_transition_band(s, e, next, adv.e_end)) return kInfeasible;
     const double energy = energy_cost_J(objective, motion.train(), adv.traction_work_J,
                                         adv.brake_work_J, adv.traction_input_J, adv.regen_J);
     return energy + value.price(next - 1) * adv.time_s +
            value.at(grid, next, physics::speed_from_e(adv.e_end));
+  }
+
+  // Whether the advance from (s, e) to stage next (ending at e_end) keeps the band on the
+  // transitions out of stage next - 1, as the sweep did (v^2 linear in the distance): a point
+  // already passed, or no band, holds.
+  bool inside_transition_band(double s, double e, int next, double e_end) const {
+    const SpeedBand* band = value.transition_band(next - 1);
+    if (band == nullptr) return true;
+    const double s0 = grid.position(next - 1), s1 = grid.position(next);
+    const double point_m = s0 + band->at_fraction * (s1 - s0);
+    if (s >= point_m) return true;
+    const double f = (point_m - s) / (s1 - s);
+    const double v = std::sqrt(std::max(0.0, 2.0 * (e + f * (e_end - e))));
+    return v >= band->min_ms && v <= band->max_ms;
   }
 
   // Best control at (s, e); the incumbent wins ties so the program does not chatter between

@@ -2,7 +2,8 @@
 // speed bands at chosen stages. A journey with timing points prices a second spent before a
 // binding window differently from one spent after it (dp/timing_journey.hpp): the backward
 // sweep then charges lambda(stage) * dt on each transition out of a stage, and a speed window
-// at a timing point makes every node of its stage outside the window infeasible, and a band at
+// at a timing point makes every node of its stage outside the window infeasible (or, for a
+// point between two stages, every transition passing it outside the window), and a band at
 // the last stage lets a run end moving. With one price everywhere and no band, a sweep gives
 // bit for bit what the single-price sweep gives.
 #pragma once
@@ -11,11 +12,18 @@
 
 namespace ecorail::dp {
 
-// Speeds allowed at one stage of the grid (m/s; open bounds are +-infinity).
+// Speeds allowed at one stage of the grid (m/s; open bounds are +-infinity). With at_fraction
+// 0 the band holds the stage's nodes. With at_fraction in (0, 1) it holds the transitions out
+// of the stage instead, at that fraction of the way to the next stage (a timing point between
+// two stages): a transition may be taken only when its speed there, with v^2 linear in the
+// distance (exact under a constant force), lies in the band. A band on the nodes of both
+// neighbouring stages would be stricter than the window: a run slowing through the point passes
+// the stage before it above the window's top.
 struct SpeedBand {
   int stage = 0;
   double min_ms = 0.0;
   double max_ms = 0.0;
+  double at_fraction = 0.0;
 };
 
 struct StagePrices {

@@ -228,7 +228,8 @@ class PartSolver {
  public:
   PartSolver(const SectionEngine& engine, const StartState& start, const EndCheck& end,
              double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
-             const std::vector<TimingWindow>& windows, const TimingJourneyOptions& options)
+             const std::vector<TimingWindow>& windows, const TimingJourneyOptions& options,
+             bool bands_on_both_stages)
       : engine_(engine),
         start_(start),
         end_(end),
@@ -236,9 +237,40 @@ class PartSolver {
         earliest_arrival_s_(earliest_arrival_s),
         points_(std::move(points)),
         windows_(windows),
-        options_(options) {}
+        options_(options),
+        bands_on_both_stages_(bands_on_both_stages) {}
 
   int evaluations() const { return evaluations_; }
+  // Whether every window of the part and its arrival hold on r's re-simulation, within the
+  // tolerances the journey reports them met by (a zero-width one within kZeroWidthTime_s and
+  // kZeroWidthSpeed_ms).
+  bool every_window_holds(const LambdaRun& r) const {
+    if (!end_(r.sim)) return false;
+    const double tol_t = options_.time_tolerance_s;
+    const double tol_v = units::kmh_to_ms(options_.speed_tolerance_kmh);
+    auto time_tol = [&](double lo, double hi) {
+      return lo == hi ? std::min(tol_t, kZeroWidthTime_s) : tol_t;
+    };
+    const double t_end = r.sim.running_time_s, te = time_tol(earliest_arrival_s_, target_s_);
+    if (!(t_end <= target_s_ + te && t_end >= earliest_arrival_s_ - te)) return false;
+    for (const PartPoint& p : points_) {
+      const TimingWindow& w = windows_[p.index];
+      const Passing at = passing_at(r.sim.trace, p.s_m);
+      const double tt = time_tol(p.earliest_s, p.latest_s);
+      const double tv =
+          w.min_speed_ms == w.max_speed_ms ? std::min(tol_v, kZeroWidthSpeed_ms) : tol_v;
+      if (!(at.t_s >= p.earliest_s - tt && at.t_s <= p.latest_s + tt &&
+            at.v_ms >= w.min_speed_ms - tv && at.v_ms <= w.max_speed_ms + tv)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  // Whether a speed window between two stages was banded on its transitions.
+  bool banded_transitions() const {
+    return std::any_of(bands_.begin(), bands_.end(),
+                       [](const SpeedBand& b) { return b.at_fraction > 0.0; });
+  }
   const std::vector<PartPoint>& points() const { return points_; }
   const std::vector<std::string>& notes() const { return notes_; }
   // The price of stretch k of the part (k = 0 .. points().size(): the stretch that ends at
@@ -434,29 +466,15 @@ class PartSolver {
       // Speed windows the run misses become bands.
       bool new_band = false;
       for (const auto& p : points_) {
-        const TimingWindow& w = windows_[p.index];
-        const bool banded = std::any_of(bands_.begin(), bands_.end(),
-                                        [&](const SpeedBand& b) { return b.stage == p.stage; });
-        if (!banded && speed_missed(run, p) && p.stage > 0 &&
-            p.stage < engine_.grid().stage_count() - 1) {
-          // (A band narrower than the grid's speed step may hold no node: it is widened to
-          // the grid speeds either side, and the last of it closed on the simulator,
-          // meet_bindings_exactly.)
-          // A point between two stages gets the band at both: the run between them is
-          // monotone, so a band at the nearer stage alone let a run pass the point outside it
-          // (traction from the stage before it, tenths of a km/h too fast).
-          const double dv = engine_.grid().dv_ms();
-          const bool narrow = w.max_speed_ms - w.min_speed_ms < dv;
-          const double lo = narrow ? w.min_speed_ms - dv : w.min_speed_ms;
-          const double hi = narrow ? w.max_speed_ms + dv : w.max_speed_ms;
-          bands_.push_back({p.stage, lo, hi});
-          const double off_m = p.s_m - engine_.grid().position(p.stage);
-          const int other = p.stage + (off_m > 0.0 ? 1 : -1);
-          if (std::abs(off_m) > 1e-6 && other > 0 && other < engine_.grid().stage_count() - 1) {
-            bands_.push_back({other, lo, hi});
-          }
-          new_band = true;
-        }
+        if (!speed_missed(run, p)) continue;
+        const std::vector<SpeedBand> bands = bands_at(p);
+        if (bands.empty()) continue;
+        const bool banded = std::any_of(bands_.begin(), bands_.end(), [&](const SpeedBand& b) {
+          return b.stage == bands.front().stage;
+        });
+        if (banded) continue;
+        bands_.insert(bands_.end(), bands.begin(), bands.end());
+        new_band = true;
       }
       // The most missed time window (a zero-width one is missed beyond half of kExactTime_s,
       // not half the window tolerance: passed 2 ms late, it did not bind and was reported
@@ -1094,6 +1112,39 @@ class PartSolver {
     return true;
   }
 
+  // The bands that hold p's speed window in the sweep: on the nodes of p's stage when p lies on
+  // it, else on the transitions out of the stage before p, at p (SpeedBand::at_fraction). With
+  // bands_on_both_stages_ a point between two stages is banded on the nodes of both instead:
+  // stricter than the window (a run coasting up a rise through it passes the stage before it
+  // above the window's top), but a run between them is monotone, so every run it allows
+  // passes inside (solve_part's second try). A window narrower than the grid's speed step may
+  // hold no node: it is widened by the step either side, and its last part closed on the
+  // simulator (meet_bindings_exactly). None at the part's first and last stages.
+  std::vector<SpeedBand> bands_at(const PartPoint& p) const {
+    const StageGrid& grid = engine_.grid();
+    const int last = grid.stage_count() - 1;
+    const TimingWindow& w = windows_[p.index];
+    const double dv = grid.dv_ms();
+    const bool narrow = w.max_speed_ms - w.min_speed_ms < dv;
+    const double lo = narrow ? w.min_speed_ms - dv : w.min_speed_ms;
+    const double hi = narrow ? w.max_speed_ms + dv : w.max_speed_ms;
+    const double off_m = p.s_m - grid.position(p.stage);
+    const int other = p.stage + (off_m > 0.0 ? 1 : -1);
+    std::vector<SpeedBand> out;
+    if (std::abs(off_m) <= 1e-6 || bands_on_both_stages_) {
+      if (p.stage <= 0 || p.stage >= last) return out;
+      out.push_back({p.stage, lo, hi, 0.0});
+      if (std::abs(off_m) > 1e-6 && other > 0 && other < last) out.push_back({other, lo, hi, 0.0});
+      return out;
+    }
+    const int before = std::min(p.stage, other);
+    if (before < 0 || before >= last) return out;
+    const double f =
+        (p.s_m - grid.position(before)) / (grid.position(before + 1) - grid.position(before));
+    out.push_back({before, lo, hi, f});
+    return out;
+  }
+
   // Solves a x = b in place (a: n x n, row-major; Gaussian elimination with partial
   // pivoting). False for a singular a.
   static bool solve_dense(std::vector<double>& a, std::vector<double>& b, std::size_t n) {
@@ -1291,6 +1342,7 @@ class PartSolver {
   std::vector<PartPoint> points_;
   const std::vector<TimingWindow>& windows_;
   const TimingJourneyOptions& options_;
+  bool bands_on_both_stages_;
   std::vector<SpeedBand> bands_;
   std::vector<std::string> notes_;
   // The binding passing points (indices into points_, in order along the part), the bound each
@@ -1312,20 +1364,38 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
                        double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
                        const std::vector<TimingWindow>& windows,
                        const TimingJourneyOptions& options) {
-  PartSolver solver(engine, start, end, target_s, earliest_arrival_s, std::move(points), windows,
-                    options);
-  PartOutcome out;
-  out.run = solver.solve(&out.met);
-  out.evaluations = solver.evaluations();
-  out.points = solver.points();
-  out.notes = solver.notes();
-  const int n = static_cast<int>(out.points.size());
-  for (int k = 0; k <= n; ++k) {
-    out.stretch_lambda_J_per_s.push_back(solver.stretch_price(k));
-    if (k < n) out.binding_sign.push_back(solver.binding_sign(k));
+  // Speed windows between stages are banded on the sweep's transitions first (the window
+  // itself); when that search ends without a run meeting every window, on the nodes of the
+  // stages either side (stricter, PartSolver::bands_at), and that run is kept if it does.
+  auto attempt = [&](bool both_stages, bool* holds, bool* banded_transitions) {
+    PartSolver solver(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
+                      both_stages);
+    PartOutcome out;
+    out.run = solver.solve(&out.met);
+    *holds = out.met && solver.every_window_holds(out.run);
+    *banded_transitions = solver.banded_transitions();
+    out.evaluations = solver.evaluations();
+    out.points = solver.points();
+    out.notes = solver.notes();
+    const int n = static_cast<int>(out.points.size());
+    for (int k = 0; k <= n; ++k) {
+      out.stretch_lambda_J_per_s.push_back(solver.stretch_price(k));
+      if (k < n) out.binding_sign.push_back(solver.binding_sign(k));
+    }
+    out.binding_slack_s = solver.binding_slack_s();
+    return out;
+  };
+  bool holds = false, banded_transitions = false;
+  PartOutcome out = attempt(false, &holds, &banded_transitions);
+  if (holds || !banded_transitions) return out;
+  bool strict_holds = false, unused = false;
+  PartOutcome strict = attempt(true, &strict_holds, &unused);
+  strict.evaluations += out.evaluations;
+  if (!strict_holds) {
+    out.evaluations = strict.evaluations;
+    return out;
   }
-  out.binding_slack_s = solver.binding_slack_s();
-  return out;
+  return strict;
 }
 
 }  // namespace ecorail::dp::timing
