@@ -188,12 +188,15 @@ void BM_RandomTimingWindows(benchmark::State& state) {
   state.counters["slowest_solve_s"] = slowest_s;
 }
 // {start, seed}: the first two samples are the ones the changes of docs/ttobench.md were made
-// on, the last two were drawn after them (out of sample).
+// on, the next two were drawn after them (out of sample), the last two after the transition
+// bands.
 BENCHMARK(BM_RandomTimingWindows)
     ->Args({0, 2})
     ->Args({1, 3})
     ->Args({0, 11})
     ->Args({1, 12})
+    ->Args({0, 21})
+    ->Args({1, 22})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 

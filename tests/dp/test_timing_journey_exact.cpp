@@ -536,6 +536,33 @@ TEST(TimingJourneyExact, WindowsNearTheFlatOutTimeAreMetOnTheSimulator) {
   }
 }
 
+// Two journeys of a sample drawn after the transition bands (the 3 km track above, at rest,
+// --ds 10 --dv 0.5) that missed a window on stop 39's code as well: a speed window at 1871.6 m
+// whose band the run kept missing by 0.21 m/s (the cruise held over the point; 8 487
+// evaluations and the window missed), now narrowed by the miss; and a zero-width time at
+// 336.5 m passed 7 ms early, within the loose first scale of the Newton step, which took the
+// run as exact without looking closer. Every window holds on the re-simulation.
+TEST(TimingJourneyExact, ABandTheRunStillMissesIsNarrowedAndAZeroWidthTimeIsHeldExactly) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
+  const TimingJourneyOptions options = coarse();
+  const std::vector<std::vector<TimingWindow>> journeys = {
+      {stop_at(0.0, 0.0, 0.0),
+       {308.8, 27.281, kOpen, -kOpen, kOpen},
+       {1113.9, 80.893, 80.893, -kOpen, kOpen},
+       {1871.6, -kOpen, 135.416, 12.147, 13.852},
+       stop_at(3000.0, 226.653, 226.653)},
+      {stop_at(0.0, 0.0, 0.0),
+       {336.5, 27.804, 27.804, -kOpen, kOpen},
+       {978.1, 65.320, 69.984, -kOpen, kOpen},
+       {1960.7, 138.892, 141.186, -kOpen, kOpen},
+       stop_at(3000.0, 245.032, 255.032)}};
+  for (std::size_t i = 0; i < journeys.size(); ++i) {
+    SCOPED_TRACE(describe(static_cast<int>(i), journeys[i]));
+    expect_every_window_holds(train, track, journeys[i], options);
+  }
+}
+
 // A run that slows through a speed window between two grid stages, from a random journey around
 // a witness run (the 3 km track above, moving start, --ds 10 --dv 0.5): the witness coasts up
 // the rise through the window at 2052.4 m (11.19 m/s there, 11.74 m/s at the stage before it,
