@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 #include "dp/stage_work.hpp"
@@ -35,8 +34,7 @@ bool passes_inside(const StageGrid& grid, int i, int j, int next_offset, const T
   const double v0 = grid.speed(i, j);
   double v1 = grid.speed(i + 1, t.lower - next_offset);
   if (t.weight > 0.0) v1 += t.weight * (grid.speed(i + 1, t.lower + 1 - next_offset) - v1);
-  const double v = std::sqrt(std::max(0.0, v0 * v0 + band.at_fraction * (v1 * v1 - v0 * v0)));
-  return v >= band.min_ms && v <= band.max_ms;
+  return band.passes(v0 * v0, v1 * v1, band.at_fraction);
 }
 
 // The nodes of one stage of a sweep: each node's best control and cost-to-go. The transition

@@ -39,9 +39,7 @@ struct Scorer {
     const double s0 = grid.position(next - 1), s1 = grid.position(next);
     const double point_m = s0 + band->at_fraction * (s1 - s0);
     if (s >= point_m) return true;
-    const double f = (point_m - s) / (s1 - s);
-    const double v = std::sqrt(std::max(0.0, 2.0 * (e + f * (e_end - e))));
-    return v >= band->min_ms && v <= band->max_ms;
+    return band->passes(2.0 * e, 2.0 * e_end, (point_m - s) / (s1 - s));
   }
 
   // Best control at (s, e); the incumbent wins ties so the program does not chatter between

@@ -8,6 +8,8 @@
 // bit for bit what the single-price sweep gives.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace ecorail::dp {
@@ -24,6 +26,13 @@ struct SpeedBand {
   double min_ms = 0.0;
   double max_ms = 0.0;
   double at_fraction = 0.0;
+
+  // Whether a run from speed^2 v0_sq to v1_sq passes the point f of the way along inside the
+  // band (v^2 linear in the distance). The sweep and the run's extraction both ask this.
+  bool passes(double v0_sq, double v1_sq, double f) const {
+    const double v = std::sqrt(std::max(0.0, v0_sq + f * (v1_sq - v0_sq)));
+    return v >= min_ms && v <= max_ms;
+  }
 };
 
 struct StagePrices {

@@ -351,10 +351,15 @@ class PartSolver {
     return 0.0;
   }
   bool speed_missed(const LambdaRun& run, const PartPoint& p) const {
+    return speed_miss_ms(run, p) > units::kmh_to_ms(options_.speed_tolerance_kmh);
+  }
+  // How far outside p's speed window the run passes p (m/s; 0 inside, infinite when it never
+  // reaches p).
+  double speed_miss_ms(const LambdaRun& run, const PartPoint& p) const {
     const Passing at = passing_at(run.sim.trace, p.s_m);
     const TimingWindow& w = windows_[p.index];
-    const double tol = units::kmh_to_ms(options_.speed_tolerance_kmh);
-    return !finite(at.v_ms) || at.v_ms < w.min_speed_ms - tol || at.v_ms > w.max_speed_ms + tol;
+    if (!finite(at.v_ms)) return kInf;
+    return std::max({0.0, at.v_ms - w.max_speed_ms, w.min_speed_ms - at.v_ms});
   }
   double arrival_error_s(const LambdaRun& run) const {
     return end_(run.sim) ? run.sim.running_time_s - target_s_ : kInf;
@@ -782,15 +787,6 @@ class PartSolver {
       return (holds(from, p) && !holds(to, p)) ||
              speed_miss_ms(to, p) > speed_miss_ms(from, p) + tol_v;
     });
-  }
-
-  // How far outside p's speed window the run passes p (m/s; 0 inside, infinite when it never
-  // reaches p).
-  double speed_miss_ms(const LambdaRun& run, const PartPoint& p) const {
-    const Passing at = passing_at(run.sim.trace, p.s_m);
-    const TimingWindow& w = windows_[p.index];
-    if (!finite(at.v_ms)) return kInf;
-    return std::max({0.0, at.v_ms - w.max_speed_ms, w.min_speed_ms - at.v_ms});
   }
 
   // A banded speed window run still misses (the cruise it holds over the point, or the
@@ -1443,13 +1439,19 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   // Speed windows between stages are banded on the sweep's transitions first (the window
   // itself); when that search ends without a run meeting every window, on the nodes of the
   // stages either side (stricter, PartSolver::bands_at), and that run is kept if it does.
-  auto attempt = [&](bool both_stages, bool* holds, bool* banded_transitions) {
+  struct Attempt {
+    PartOutcome out;
+    bool holds = false;               // every window holds on the run's re-simulation
+    bool banded_transitions = false;  // a window was banded on the sweep's transitions
+  };
+  auto attempt = [&](bool both_stages) {
     PartSolver solver(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
                       both_stages);
-    PartOutcome out;
+    Attempt a;
+    PartOutcome& out = a.out;
     out.run = solver.solve(&out.met);
-    *holds = out.met && solver.every_window_holds(out.run);
-    *banded_transitions = solver.banded_transitions();
+    a.holds = out.met && solver.every_window_holds(out.run);
+    a.banded_transitions = solver.banded_transitions();
     out.evaluations = solver.evaluations();
     out.points = solver.points();
     out.notes = solver.notes();
@@ -1459,19 +1461,14 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
       if (k < n) out.binding_sign.push_back(solver.binding_sign(k));
     }
     out.binding_slack_s = solver.binding_slack_s();
-    return out;
+    return a;
   };
-  bool holds = false, banded_transitions = false;
-  PartOutcome out = attempt(false, &holds, &banded_transitions);
-  if (holds || !banded_transitions) return out;
-  bool strict_holds = false, unused = false;
-  PartOutcome strict = attempt(true, &strict_holds, &unused);
-  strict.evaluations += out.evaluations;
-  if (!strict_holds) {
-    out.evaluations = strict.evaluations;
-    return out;
-  }
-  return strict;
+  Attempt first = attempt(false);
+  if (first.holds || !first.banded_transitions) return std::move(first.out);
+  Attempt strict = attempt(true);
+  PartOutcome& kept = strict.holds ? strict.out : first.out;
+  kept.evaluations = first.out.evaluations + strict.out.evaluations;
+  return std::move(kept);
 }
 
 }  // namespace ecorail::dp::timing
