@@ -977,6 +977,7 @@ class PartSolver {
       }
       std::optional<LambdaRun> cand = newton_or_continued(from, residuals);
       if (!cand) cand = newton_without_short_phases(from, residuals);
+      if (!cand) cand = newton_with_split_phases(from, residuals);
       if (!cand) return;
       cand->cost_J = engine_.energy_cost_J(cand->sim);
       if (holds_exactly(*cand, active, arrival_binds)) {
@@ -1008,6 +1009,52 @@ class PartSolver {
     merged.sim = engine_.simulate(merged.program, start_);
     ++evaluations_;
     return newton_or_continued(merged, residuals);
+  }
+
+  // One phase that runs through two timed points cannot pass both at their bounds: its own
+  // switches move both passing times together (a hold at 67.89 km/h through a latest bound at
+  // 372.7 m and a zero-width time 583.8 m on, passed 136 ms early, needs a slower hold between
+  // them, a step below the grid's 0.5 km/h: bench_timing_windows /1/22 journey 28). The phase
+  // is split after each timed point but its last by a short phase of another control (a coast
+  // or a hold to pass the next one later, traction or a hold to pass it earlier), which gives
+  // Newton's method the switch it lacks; each control in turn, the first run solved kept. One
+  // Newton solve each, without continuation: by continuation the split programs of a run that
+  // no split helps cost a random-window test 38 s more.
+  template <typename Residuals>
+  std::optional<LambdaRun> newton_with_split_phases(const LambdaRun& run, Residuals& residuals) {
+    using physics::Control;
+    std::vector<double> timed;  // the points with a time window, in order
+    for (const PartPoint& p : points_) {
+      if (finite(p.earliest_s) || finite(p.latest_s)) timed.push_back(p.s_m);
+    }
+    std::sort(timed.begin(), timed.end());
+    const double length = engine_.route().length_m();
+    for (const bool later : {true, false}) {
+      physics::ControlProgram split;
+      const physics::ControlProgram& prog = run.program;
+      for (std::size_t k = 0; k < prog.size(); ++k) {
+        split.push_back(prog[k]);
+        const double end_m = k + 1 < prog.size() ? prog[k + 1].from_m : length;
+        const Control c = prog[k].control;
+        if (c == Control::MaxBrake) continue;
+        const Control other =
+            later ? (c == Control::Coast ? Control::Hold : Control::Coast)
+                  : (c == Control::MaxTraction ? Control::Hold : Control::MaxTraction);
+        for (std::size_t i = 0; i + 1 < timed.size(); ++i) {
+          if (!(timed[i] > prog[k].from_m && timed[i + 1] < end_m)) continue;
+          const double gap_m = std::min(kSplitPhase_m, 0.25 * (timed[i + 1] - timed[i]));
+          split.push_back({timed[i] + gap_m, other});
+          split.push_back({timed[i] + 2.0 * gap_m, c});
+        }
+      }
+      if (split.size() == prog.size()) return std::nullopt;
+      LambdaRun cand = run;
+      cand.program = std::move(split);
+      cand.sim = engine_.simulate(cand.program, start_);
+      ++evaluations_;
+      if (std::optional<LambdaRun> solved = newton_on_switches(cand, residuals)) return solved;
+    }
+    return std::nullopt;
   }
 
   // One Newton solve on run's switches, and by continuation when that stalls.
@@ -1395,6 +1442,7 @@ class PartSolver {
   // Newton solves of meet_bindings_exactly, each with the windows the one before missed held.
   static constexpr int kMissedWindowRounds = 4;
   static constexpr double kShortPhase_m = 5.0;  // see newton_without_short_phases
+  static constexpr double kSplitPhase_m = 2.0;  // see newton_with_split_phases
   static constexpr double kInside_s = 0.1;
   static constexpr double kSearchStep_m = 0.5;  // re-simulation step of a search's evaluation
   static constexpr double kMovingEndTrim_s = 5.0;
