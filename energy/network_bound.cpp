@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "energy/pair_bound.hpp"
+#include "energy/window_bound.hpp"
 
 namespace ecorail::energy {
 
@@ -45,6 +46,13 @@ NetworkBound network_substation_bound(const power::NetworkProfile& profile,
     const double slack_J = trains * profile.span_bins() * 1.0 / kMicroJoulesPerJoule;
     const double cap = used_regen_bound(dr, problem).bound_used_J + slack_J;
     if (cap < out.reuse_cap_J) out.reuse_cap_J = cap, out.pair_bound = true;
+    // One headway class: the window bound of the same (D, R), far tighter (it values the
+    // trains on the line together, not in pairs).
+    const WindowBound window = window_used_regen_bound(dr, problem);
+    if (window.applicable && window.bound_used_J + slack_J < out.reuse_cap_J) {
+      out.reuse_cap_J = window.bound_used_J + slack_J;
+      out.window_bound = true;
+    }
   }
   out.substation_J = out.demand_J - out.reuse_cap_J;
   return out;

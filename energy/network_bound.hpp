@@ -10,8 +10,9 @@
 // resistance) of the demand D and the regeneration R. Summed over the day, the network uses at
 // most what that power balance could use in its best timetable, and the power-flow pair bound
 // (pair_bound.hpp) of the profile (D, R) caps that for every timetable of the problem (peak
-// classes relaxed to one range covering both). So for every timetable
-//   substation + curtailed traction >= D - min(R, pair bound of (D, R)),
+// classes relaxed to one range covering both), as does, with one headway class, the window
+// bound (window_bound.hpp) of the same profile. So for every timetable
+//   substation + curtailed traction >= D - min(R, pair bound of (D, R), window bound of (D, R)),
 // and with a reversible substation (S_b may be negative) only D - R. Losses, curtailment and
 // the distance between trains are not bounded below, which is what keeps the gap open. The
 // profile's bins are rounded to micro-joules; the bound takes off one micro-joule per train
@@ -30,6 +31,7 @@ struct NetworkBound {
   double regen_J = 0.0;       // regeneration offered (every timetable)
   double reuse_cap_J = 0.0;   // the most regeneration any timetable can put to use
   bool pair_bound = false;    // the pair bound capped the reuse below the total regeneration
+  bool window_bound = false;  // the window bound capped it below that (one headway class)
 };
 
 NetworkBound network_substation_bound(const power::NetworkProfile& profile,

@@ -17,6 +17,7 @@
 #include "energy/fleet_energy_model.hpp"
 #include "energy/network_bound.hpp"
 #include "energy/pair_bound.hpp"
+#include "energy/window_bound.hpp"
 #include "fleet/headway_optimiser.hpp"
 #include "fleet/pattern_search.hpp"
 #include "power/network_balance.hpp"
@@ -103,6 +104,10 @@ TEST(NetworkBound, NeverAboveTheBruteForceOptimum) {
     const double best = brute_force_minimum(c.p, *c.s, profile, &count);
     EXPECT_GT(count, 50) << c.name;
     EXPECT_LE(b.substation_J, best) << c.name;
+    // Without auxiliaries (or with few), the window bound is the tighter cap on the reuse.
+    if (c.s->auxiliary_power_W < 1e5) {
+      EXPECT_TRUE(b.window_bound) << c.name;
+    }
     // The bound's parts: the demand is every timetable's, the reuse at most the regeneration.
     EXPECT_NEAR(b.demand_J,
                 c.p.trains * (profile.traction_total_J() +
@@ -122,18 +127,28 @@ TEST(NetworkBound, NeverAboveTheBruteForceOptimum) {
   EXPECT_DOUBLE_EQ(rev.substation_J, rev.demand_J - rev.regen_J);
 }
 
-TEST(NetworkBound, ZeroResistanceAndNoAuxiliariesIsThePowerFlowPairBound) {
+TEST(NetworkBound, ZeroResistanceAndNoAuxiliariesIsThePowerFlowBound) {
   // The network is then one bus, the power-flow model exactly: its bound is traction less the
-  // power-flow pair bound of the same trip on the same grid.
-  const FleetProblem p = small_fleet(8, 40, 120, 550);
+  // tighter of the power-flow pair and window bounds of the same trip on the same grid (dense
+  // trains, where the total regeneration caps both, and sparse ones, where the window bound
+  // does).
   const NetworkProfile profile(small_pattern().trip, 10);
-  const NetworkBound b =
-      network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, limits_of(p));
   const PowerProfile pf(small_pattern().trip, 10, {});
-  const PairBound pair = used_regen_bound(pf, limits_of(p));
-  const double cap = std::min(pair.bound_used_J, p.trains * profile.regen_total_J());
-  EXPECT_NEAR(b.reuse_cap_J, cap, 1e-6 * cap);
-  EXPECT_NEAR(b.substation_J, p.trains * profile.traction_total_J() - cap, 1e-6 * b.substation_J);
+  for (const FleetProblem& p : {small_fleet(8, 40, 120, 550), small_fleet(3, 30, 150, 160)}) {
+    const NetworkBound b =
+        network_substation_bound(profile, *supply(0.0, 0.0, false), 1.0, limits_of(p));
+    const PairBound pair = used_regen_bound(pf, limits_of(p));
+    const energy::WindowBound window = energy::window_used_regen_bound(pf, limits_of(p));
+    ASSERT_TRUE(window.applicable);
+    const double regen_J = p.trains * profile.regen_total_J();
+    const double cap = std::min({pair.bound_used_J, window.bound_used_J, regen_J});
+    EXPECT_NEAR(b.reuse_cap_J, cap, 1e-6 * cap) << p.trains;
+    EXPECT_NEAR(b.substation_J, p.trains * profile.traction_total_J() - cap, 1e-6 * b.substation_J)
+        << p.trains;
+    if (p.trains == 3) {
+      EXPECT_LT(window.bound_used_J, std::min(pair.bound_used_J, regen_J));
+    }
+  }
 }
 
 HeadwayOptimiserOptions cheap_search() {
