@@ -1015,11 +1015,12 @@ class PartSolver {
   // switches move both passing times together (a hold at 67.89 km/h through a latest bound at
   // 372.7 m and a zero-width time 583.8 m on, passed 136 ms early, needs a slower hold between
   // them, a step below the grid's 0.5 km/h: bench_timing_windows /1/22 journey 28). The phase
-  // is split after each timed point but its last by a short phase of another control (a coast
-  // or a hold to pass the next one later, traction or a hold to pass it earlier), which gives
-  // Newton's method the switch it lacks; each control in turn, the first run solved kept. One
-  // Newton solve each, without continuation: by continuation the split programs of a run that
-  // no split helps cost a random-window test 38 s more.
+  // is split after each timed point but its last by a short phase of another control, which
+  // gives Newton's method the switch it lacks: a coast first (a hold inside a coast), then
+  // traction (a hold inside traction); which way each moves the next passing time depends on
+  // the phase and the gradient, so both are tried and the first run solved is kept. One Newton
+  // solve each, without continuation: by continuation the split programs of a run that no split
+  // helps cost a random-window test 38 s more.
   template <typename Residuals>
   std::optional<LambdaRun> newton_with_split_phases(const LambdaRun& run, Residuals& residuals) {
     using physics::Control;
@@ -1029,7 +1030,7 @@ class PartSolver {
     }
     std::sort(timed.begin(), timed.end());
     const double length = engine_.route().length_m();
-    for (const bool later : {true, false}) {
+    for (const Control inserted : {Control::Coast, Control::MaxTraction}) {
       physics::ControlProgram split;
       const physics::ControlProgram& prog = run.program;
       for (std::size_t k = 0; k < prog.size(); ++k) {
@@ -1037,9 +1038,7 @@ class PartSolver {
         const double end_m = k + 1 < prog.size() ? prog[k + 1].from_m : length;
         const Control c = prog[k].control;
         if (c == Control::MaxBrake) continue;
-        const Control other =
-            later ? (c == Control::Coast ? Control::Hold : Control::Coast)
-                  : (c == Control::MaxTraction ? Control::Hold : Control::MaxTraction);
+        const Control other = c == inserted ? Control::Hold : inserted;
         for (std::size_t i = 0; i + 1 < timed.size(); ++i) {
           if (!(timed[i] > prog[k].from_m && timed[i + 1] < end_m)) continue;
           const double gap_m = std::min(kSplitPhase_m, 0.25 * (timed[i + 1] - timed[i]));
