@@ -13,12 +13,10 @@
 # source tree, or TTOBENCH=DIR.
 set -euo pipefail
 
-here=$(cd "$(dirname "$0")/.." && pwd)
 bin=${1:-build/ecorail}
 shift || true
-ttobench=${TTOBENCH:-$here/../shared/data/ttobench}
-out_dir=$(mktemp -d)
-trap 'rm -rf "$out_dir"' EXIT
+# shellcheck source=bench/ttobench_common.sh
+. "$(dirname "$0")/ttobench_common.sh"
 
 cmd=("$bin" solve --line "$ttobench/tracks/00_var_speed_limit_100.json"
   --train "$here/data/ttobench/NL_Intercity_VIRM6_gpops.json"

@@ -291,14 +291,20 @@ class PartSolver {
     for (std::size_t m = 0; m < binding_.size(); ++m) {
       const PartPoint& p = points_[binding_[m]];
       const double t = passing_at(run.sim.trace, p.s_m).t_s;
-      const double margin = 2.0 * kInside_s + options_.time_tolerance_s;
+      const double margin = 2.0 * inside_s(m) + options_.time_tolerance_s;
       inactive_[m] = finite(t) && t > p.earliest_s + margin && t < p.latest_s - margin;
     }
   }
 
   // How far inside its bound a binding passing point may pass (see search_target_s).
   // (0 once meet_bindings_exactly has put every binding point at its bound.)
-  double binding_slack_s() const { return binding_.size() > 1 && !exact_ ? 2.0 * kInside_s : 0.0; }
+  double binding_slack_s() const {
+    double slack = 0.0;
+    for (std::size_t m = 0; m < binding_.size() && binding_.size() > 1 && !exact_; ++m) {
+      slack = std::max(slack, 2.0 * inside_s(m));
+    }
+    return slack;
+  }
   // The sign of point k's multiplier: +1 its latest bound binds (the price before it is the
   // higher), -1 its earliest, 0 it does not bind.
   int binding_sign(int k) const {
@@ -556,7 +562,7 @@ class PartSolver {
         const PartPoint& p = points_[binding_[m]];
         const double off = std::abs(passing_at(run.sim.trace, p.s_m).t_s - bound_s_[m]);
         const double allowed =
-            binding_.size() == 1 || exact_ ? options_.time_tolerance_s : 2.0 * kInside_s + 1e-9;
+            binding_.size() == 1 || exact_ ? options_.time_tolerance_s : 2.0 * inside_s(m) + 1e-9;
         // (A run outside the window is reported as missing it, on the re-simulation.)
         const double t = passing_at(run.sim.trace, p.s_m).t_s;
         const bool inside = t >= p.earliest_s - options_.time_tolerance_s &&
@@ -868,7 +874,7 @@ class PartSolver {
   }
 
   // The binding windows put at their bounds, jointly. The price search leaves each binding
-  // point up to 2 kInside_s inside its bound (search_target_s, several binding points) or the
+  // point up to 2 inside_s inside its bound (search_target_s, several binding points) or the
   // arrival a few tenths from its time, and one switch per equation (trim_switch) cannot always
   // close them: with the points at their bounds the speed at the last one may leave the rest no
   // switch that sets the arrival. Here every residual (each binding point's passing time minus
@@ -1379,7 +1385,7 @@ class PartSolver {
       return err;
     };
     falling_root(g, std::log(std::max(1.0, before_[m])), kFirstLogPriceStep, 0.0, 30.0,
-                 kOuterBudget, passing_tolerance_s());
+                 kOuterBudget, passing_tolerance_s(m));
     if (!best_ok) {
       notes_.push_back(no_run_note(p));
       return false;
@@ -1392,26 +1398,125 @@ class PartSolver {
 
   // With several binding points, no switch-point trim closes their last tenths (a switch
   // between two of them changes the speed at the later one, and the run after it by seconds),
-  // so each is searched for a time kInside_s inside its bound, within kInside_s: it passes
-  // within 2 kInside_s of its bound, inside its window. One binding point: at its bound, within
-  // kPassingTolerance_s, and trimmed.
+  // so each is searched for a time inside_s(m) inside its bound, within inside_s(m): it passes
+  // within 2 inside_s(m) of its bound, inside its window, and meet_bindings_exactly puts it at
+  // its bound. inside_s is kInside_s, or a share of the stretch's time before the point when
+  // that is more (kInsidePerStretch): over a long stretch the passing time is a step function of
+  // the price with steps of tenths of a second (a cruise's speed is a grid speed: 0.2 km/h on
+  // 12 km at 130 km/h is 0.5 s), and a search for 0.1 s there cycled through thousands of runs
+  // (a 48.5 km journey with three timing points, 3 784 price evaluations; docs/ttobench.md).
+  // One binding point: at its bound, within kPassingTolerance_s, and trimmed.
+  double inside_s(std::size_t m) const {
+    if (binding_.size() == 1) return 0.0;
+    if (!long_part()) return kInside_s;
+    const double from = m == 0 ? 0.0 : bound_s_[m - 1];
+    return std::max(kInside_s, kInsidePerStretch * (bound_s_[m] - from));
+  }
+  // A part of at least kLongPart_m, where a run costs tenths of a second: its prices for
+  // several binding points are searched by meet_bindings_gauss_seidel first, and its stretches'
+  // passing tolerances grow with their time (inside_s). On shorter parts the search of
+  // meet_bindings alone was checked on 240 random journeys (bench/bench_timing_windows.cpp);
+  // there the Gauss-Seidel search first made two of them 3-4 % dearer (docs/ttobench.md).
+  bool long_part() const { return engine_.route().length_m() >= kLongPart_m; }
   double search_target_s(std::size_t m) const {
     if (binding_.size() == 1) return bound_s_[m];
     const PartPoint& p = points_[binding_[m]];
-    return bound_s_[m] == p.latest_s ? bound_s_[m] - kInside_s : bound_s_[m] + kInside_s;
+    return bound_s_[m] == p.latest_s ? bound_s_[m] - inside_s(m) : bound_s_[m] + inside_s(m);
   }
-  double passing_tolerance_s() const {
-    return binding_.size() == 1 ? kPassingTolerance_s : kInside_s;
+  double passing_tolerance_s(std::size_t m) const {
+    return binding_.size() == 1 ? kPassingTolerance_s : inside_s(m);
+  }
+
+  // Several binding points: each price searched for its own point's time with every other
+  // price held, the price after the last binding point included (searched for the arrival), in
+  // order along the part, cycling until every point and the arrival are within their
+  // tolerances (Gauss-Seidel). Unlike search_price, no search re-solves the arrival at each of
+  // its evaluations, so a search costs a few runs, not a few dozen, and sees the passing time
+  // as a function of its own price alone. False (prices and run as they were) when the cycles
+  // end without every target met.
+  bool meet_bindings_gauss_seidel(LambdaRun& run) {
+    const std::size_t k = binding_.size();
+    const std::vector<double> before0 = before_;
+    const double after0 = lambda_after_, guess0 = x_after_guess_;
+    std::optional<LambdaRun> current;
+    auto time_at = [&](const LambdaRun& r, std::size_t m) {
+      return m < k ? passing_at(r.sim.trace, points_[binding_[m]].s_m).t_s : r.sim.running_time_s;
+    };
+    auto target = [&](std::size_t m) { return m < k ? search_target_s(m) : target_s_; };
+    auto tolerance = [&](std::size_t m) {
+      return m < k ? passing_tolerance_s(m) : kArrivalTolerance_s;
+    };
+    auto within = [&](const LambdaRun& r, std::size_t m) {
+      const double t = time_at(r, m);
+      if (m == k && end_(r.sim) && lambda_after_ <= 1.0 + 1e-9 && t < target_s_ &&
+          t >= earliest_arrival_s_ - options_.time_tolerance_s) {
+        return true;  // even the lowest price after the last point is early: it does not bind
+      }
+      return finite(t) && std::abs(t - target(m)) <= tolerance(m);
+    };
+    current = evaluate(before_, lambda_after_);
+    for (int cycle = 0; cycle < kGaussSeidelCycles; ++cycle) {
+      bool moved = false;
+      for (std::size_t m = 0; m <= k; ++m) {
+        if (within(*current, m)) continue;
+        std::optional<LambdaRun> best;
+        double best_abs = kInf, best_x = 0.0;
+        auto g = [&](double x) {
+          std::vector<double> before = before_;
+          double after = lambda_after_;
+          (m < k ? before[m] : after) = std::exp(x);
+          LambdaRun r = evaluate(before, after);
+          const double t = m < k || end_(r.sim) ? time_at(r, m) : kInf;
+          if (!finite(t)) return kInf;
+          const double err = t - target(m);
+          if (std::abs(err) < best_abs) best_abs = std::abs(err), best_x = x, best = std::move(r);
+          return err;
+        };
+        const double x0 = std::log(std::max(1.0, m < k ? before_[m] : lambda_after_));
+        falling_root(g, x0, kGaussSeidelLogStep, 0.0, 30.0, kGaussSeidelBudget, tolerance(m));
+        if (!best) continue;
+        double& price = m < k ? before_[m] : lambda_after_;
+        moved = moved || std::abs(std::log(price) - best_x) > kNarrowestLogPrice;
+        price = std::exp(best_x);
+        current = std::move(best);
+      }
+      bool all = true;
+      for (std::size_t m = 0; m <= k; ++m) all = all && within(*current, m);
+      // A cycle that moved no price ends the search: each point is then as near its target as
+      // its own price can put it (the time jumps across the target between neighbouring
+      // prices). It is kept when every point is within kGaussSeidelAccept_s: the Newton step on
+      // the switch points (meet_bindings_exactly) closes such gaps.
+      bool near = !moved;
+      for (std::size_t m = 0; m <= k && near; ++m) {
+        near = within(*current, m) ||
+               std::abs(time_at(*current, m) - target(m)) <= kGaussSeidelAccept_s;
+      }
+      if (all || near) {
+        x_after_guess_ = std::log(std::max(1.0, lambda_after_));
+        arrival_at_floor_ = lambda_after_ <= 1.0 + 1e-9 &&
+                            current->sim.running_time_s < target_s_ - kArrivalTolerance_s;
+        run = fine(std::move(*current));
+        return true;
+      }
+      if (!moved) break;
+    }
+    before_ = before0;
+    lambda_after_ = after0;
+    x_after_guess_ = guess0;
+    return false;
   }
 
   // Every binding point's price searched for its time: one root search for one point; for
-  // several, cycles of one search per point (skipping those already within the tolerance)
-  // until all are within it.
+  // several, cycles of one search per point with the others held (meet_bindings_gauss_seidel),
+  // and when they do not meet every target, cycles of one search per point with the arrival
+  // re-solved at each of its evaluations (skipping those already within the tolerance) until
+  // all are within it.
   bool meet_bindings(LambdaRun& run) {
     const std::size_t k = binding_.size();
+    if (k > 1 && long_part() && meet_bindings_gauss_seidel(run)) return true;
     auto within = [&](std::size_t m) {
       const double t = passing_at(run.sim.trace, points_[binding_[m]].s_m).t_s;
-      return finite(t) && std::abs(t - search_target_s(m)) <= passing_tolerance_s();
+      return finite(t) && std::abs(t - search_target_s(m)) <= passing_tolerance_s(m);
     };
     const int cycles = k > 1 ? kMaxCycles : 1;
     for (int cycle = 0; cycle < cycles; ++cycle) {
@@ -1436,14 +1541,21 @@ class PartSolver {
   static constexpr double kFirstLogPriceStep = 0.3;
   static constexpr double kRetryLogPriceStep = 0.01;
   static constexpr int kOuterBudget = 25;
-  static constexpr int kMaxCycles = 6;          // of the searches for several binding points
-  static constexpr int kNewtonIterations = 12;  // of meet_bindings_exactly
+  static constexpr int kMaxCycles = 6;  // of the searches for several binding points
+  // meet_bindings_gauss_seidel: cycles, runs per search and its first log-price step.
+  static constexpr int kGaussSeidelCycles = 8;
+  static constexpr int kGaussSeidelBudget = 12;
+  static constexpr double kGaussSeidelLogStep = 0.05;
+  static constexpr double kGaussSeidelAccept_s = 1.0;
+  static constexpr double kLongPart_m = 10000.0;  // see long_part
+  static constexpr int kNewtonIterations = 12;    // of meet_bindings_exactly
   // Newton solves of meet_bindings_exactly, each with the windows the one before missed held.
   static constexpr int kMissedWindowRounds = 4;
   static constexpr double kShortPhase_m = 5.0;  // see newton_without_short_phases
   static constexpr double kSplitPhase_m = 2.0;  // see newton_with_split_phases
   static constexpr double kInside_s = 0.1;
-  static constexpr double kSearchStep_m = 0.5;  // re-simulation step of a search's evaluation
+  static constexpr double kInsidePerStretch = 1e-3;  // of the stretch's seconds (inside_s)
+  static constexpr double kSearchStep_m = 0.5;       // re-simulation step of a search's evaluation
   static constexpr double kMovingEndTrim_s = 5.0;
   // RK4 step of the cruise polish's simplex runs on a part that ends moving (its result is
   // met at the engine's fine step): 5 m halves the polish of the 48.5 km GPOPS-II case against

@@ -94,11 +94,13 @@ if [ "${TRACK_RUNS:-1}" != 0 ]; then
   done
 fi
 
-# The journey's train: the pairing of docs/ttobench.md, and the GPOPS comparison's own train.
+# The journey's train: the pairing of docs/ttobench.md, the GPOPS comparison's own train, and the
+# VIRM6 for the long journey with timing points (bench/ttobench_long_journey.sh).
 journey_train() {
   case "$1" in
     *gpops*) echo "$repo/data/ttobench/NL_Intercity_VIRM6_gpops.json" ;;
     CH_StGallen_Wil*) echo "$dir/trains/CH_Stadler_KISS_SBB.json" ;;
+    00_var_gradient_minusplus_6_three_points*) echo "$dir/trains/NL_Intercity_VIRM6.json" ;;
     *) echo "" ;;
   esac
 }

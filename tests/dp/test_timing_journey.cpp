@@ -2,6 +2,7 @@
 // (dp/stage_prices.hpp), on a short level track at a coarse grid so the tests stay cheap.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -169,54 +170,35 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
 // run's passing time, the second by more than the first saves): met in the re-simulation, each
 // reported as binding, and no run of a lattice of three prices (before the first point, between
 // the points, after the second) that meets all windows is cheaper than the solver's run.
-TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
-  const physics::Train train = data::default_train();
-  const physics::Route track = test_track();
-  const TimeSearchResult ref = plain(train, track, 240.0);
-  ASSERT_TRUE(ref.converged);
-  const double latest1 = std::floor(time_at(ref.run.sim, 1000.0) - 10.0);
-  const double latest2 = std::floor(time_at(ref.run.sim, 2000.0) - 12.0);
-  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1000, 0, latest1),
-                                       pass_at(2000, 0, latest2), stop_at(3000, 200, 240)};
-  const TimingJourneyOptions options = coarse();
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, options, "two");
-  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
-  ASSERT_TRUE(sol.windows_met);
-  // Each passes within 0.2 s inside its bound (the search's documented band).
-  for (int i : {1, 2}) {
-    const double latest = i == 1 ? latest1 : latest2;
-    EXPECT_LE(sol.windows[i].time_s, latest + options.time_tolerance_s) << i;
-    EXPECT_GE(sol.windows[i].time_s, latest - 0.2 - options.time_tolerance_s) << i;
-    ASSERT_EQ(sol.windows[i].binds.size(), 1u) << i;
-    EXPECT_EQ(sol.windows[i].binds[0], "latest") << i;
-  }
-  const double energy = sol.journey.sections.at(0).run.sim.energy.traction_work_J;
-  const std::vector<double>& found = sol.parts.at(0).stretch_lambda_J_per_s;
-  ASSERT_EQ(found.size(), 3u);
-  EXPECT_GT(found[0], found[1]);  // latest bounds: a dearer second before each point
-  EXPECT_GT(found[1], found[2]);
-
-  // The lattice: wide (factors of 1.8) and around the solver's own prices (+-15 %).
+// The least traction energy of the runs, over a lattice of three stretch prices (wide: the
+// values of each price; and around found, the solver's own prices, +-15 %), that meet the two
+// passing points' latest bounds and arrive within [arrive_from_s, arrive_by_s]: an independent
+// bound on what the solver's run may cost. +inf when none does.
+double best_lattice_run_J(const physics::Train& train, const physics::Route& track,
+                          const TimingJourneyOptions& options, std::array<double, 2> at_m,
+                          std::array<double, 2> latest_s, double arrive_from_s, double arrive_by_s,
+                          const std::vector<std::vector<double>>& wide,
+                          const std::vector<double>& found) {
   const SectionEngine engine(train, track, options.engine);
-  const int stage1 = static_cast<int>(std::lround(1000.0 / options.engine.grid.ds_m));
-  const int stage2 = static_cast<int>(std::lround(2000.0 / options.engine.grid.ds_m));
-  double best_scan = kOpen;
+  const int stage1 = static_cast<int>(std::lround(at_m[0] / options.engine.grid.ds_m));
+  const int stage2 = static_cast<int>(std::lround(at_m[1] / options.engine.grid.ds_m));
+  const double tol = options.time_tolerance_s;
+  double best = kOpen;
   auto scan = [&](double p1, double p2, double p3) {
     StagePrices p;
     p.lambda_J_per_s.assign(engine.grid().stage_count() - 1, p3);
     for (int i = 0; i < stage2; ++i) p.lambda_J_per_s[i] = i < stage1 ? p1 : p2;
     const LambdaRun r = engine.run(p, {}, 0.5);
-    if (!run_arrives(r.sim) || r.sim.running_time_s > 240.0 + options.time_tolerance_s ||
-        r.sim.running_time_s < 200.0 ||
-        time_at(r.sim, 1000.0) > latest1 + options.time_tolerance_s ||
-        time_at(r.sim, 2000.0) > latest2 + options.time_tolerance_s) {
+    if (!run_arrives(r.sim) || r.sim.running_time_s > arrive_by_s + tol ||
+        r.sim.running_time_s < arrive_from_s || time_at(r.sim, at_m[0]) > latest_s[0] + tol ||
+        time_at(r.sim, at_m[1]) > latest_s[1] + tol) {
       return;
     }
-    best_scan = std::min(best_scan, r.sim.energy.traction_work_J);
+    best = std::min(best, r.sim.energy.traction_work_J);
   };
-  for (double p1 = 3e5; p1 <= 3e6; p1 *= 1.8) {
-    for (double p2 = 2e5; p2 <= 3e6; p2 *= 1.8) {
-      for (double p3 = 1e5; p3 <= 1.5e6; p3 *= 1.8) scan(p1, p2, p3);
+  for (double p1 : wide[0]) {
+    for (double p2 : wide[1]) {
+      for (double p3 : wide[2]) scan(p1, p2, p3);
     }
   }
   for (double f1 : {0.85, 0.93, 1.0, 1.07, 1.15}) {
@@ -224,8 +206,113 @@ TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
       for (double f3 : {0.85, 1.0, 1.15}) scan(f1 * found[0], f2 * found[1], f3 * found[2]);
     }
   }
+  return best;
+}
+
+// Two passing points with latest bounds 10 s and 12 s (whole seconds) before the plain
+// optimum in time_s passes them, and the stop in [arrive_from_s, time_s].
+struct TwoLatest {
+  std::array<double, 2> latest_s{};
+  std::vector<TimingWindow> windows;
+};
+TwoLatest two_latest_windows(const physics::Train& train, const physics::Route& track,
+                             std::array<double, 2> at_m, double time_s, double arrive_from_s) {
+  const TimeSearchResult ref = plain(train, track, time_s);
+  EXPECT_TRUE(ref.converged);
+  TwoLatest t;
+  t.latest_s = {std::floor(time_at(ref.run.sim, at_m[0]) - 10.0),
+                std::floor(time_at(ref.run.sim, at_m[1]) - 12.0)};
+  t.windows = {stop_at(0, 0, 0), pass_at(at_m[0], 0, t.latest_s[0]),
+               pass_at(at_m[1], 0, t.latest_s[1]),
+               stop_at(track.length_m(), arrive_from_s, time_s)};
+  return t;
+}
+
+// Both passing points of a TwoLatest journey are passed by their latest bounds and bind there.
+void expect_both_bind_latest(const TimingJourneySolution& sol, std::array<double, 2> latest_s,
+                             double tolerance_s) {
+  for (int i : {1, 2}) {
+    EXPECT_LE(sol.windows[i].time_s, latest_s[i - 1] + tolerance_s) << i;
+    ASSERT_EQ(sol.windows[i].binds.size(), 1u) << i;
+    EXPECT_EQ(sol.windows[i].binds[0], "latest") << i;
+  }
+}
+
+// The part's run costs no more than the best lattice run (best_lattice_run_J, within 0.2 %);
+// wide(found) gives the wide lattice's values from the solver's three stretch prices.
+template <typename Wide>
+void expect_no_dearer_than_lattice(const TimingJourneySolution& sol, const physics::Train& train,
+                                   const physics::Route& track, const TimingJourneyOptions& options,
+                                   std::array<double, 2> at_m, const TwoLatest& two,
+                                   double arrive_from_s, double arrive_by_s, const Wide& wide) {
+  const double energy = sol.journey.sections.at(0).run.sim.energy.traction_work_J;
+  const std::vector<double>& found = sol.parts.at(0).stretch_lambda_J_per_s;
+  ASSERT_EQ(found.size(), 3u);
+  const double best_scan = best_lattice_run_J(train, track, options, at_m, two.latest_s,
+                                              arrive_from_s, arrive_by_s, wide(found), found);
   ASSERT_TRUE(std::isfinite(best_scan));
   EXPECT_LE(energy, best_scan * (1.0 + 2e-3)) << energy << " vs scan " << best_scan;
+}
+
+TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const TwoLatest two = two_latest_windows(train, track, {1000.0, 2000.0}, 240.0, 200.0);
+  const TimingJourneyOptions options = coarse();
+  const TimingJourneySolution sol = solve_timing_journey(train, track, two.windows, options, "two");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  expect_both_bind_latest(sol, two.latest_s, options.time_tolerance_s);
+  // Each passes within 0.2 s inside its bound (the search's documented band).
+  for (int i : {1, 2}) {
+    EXPECT_GE(sol.windows[i].time_s, two.latest_s[i - 1] - 0.2 - options.time_tolerance_s) << i;
+  }
+  const std::vector<double>& found = sol.parts.at(0).stretch_lambda_J_per_s;
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_GT(found[0], found[1]);  // latest bounds: a dearer second before each point
+  EXPECT_GT(found[1], found[2]);
+  // The lattice: wide (factors of 1.8) and around the solver's own prices (+-15 %).
+  expect_no_dearer_than_lattice(sol, train, track, options, {1000.0, 2000.0}, two, 200.0, 240.0,
+                                [](const std::vector<double>&) {
+                                  std::vector<std::vector<double>> wide(3);
+                                  for (double p = 3e5; p <= 3e6; p *= 1.8) wide[0].push_back(p);
+                                  for (double p = 2e5; p <= 3e6; p *= 1.8) wide[1].push_back(p);
+                                  for (double p = 1e5; p <= 1.5e6; p *= 1.8) wide[2].push_back(p);
+                                  return wide;
+                                });
+}
+
+// The same on a 12 km part, where the prices of several binding points are searched one at a
+// time with the others held (the Gauss-Seidel search of a long part, dp/timing_journey_part.cpp)
+// and the passing tolerance grows with a stretch's time: both windows are met at their bounds,
+// the zero-width arrival exactly, and the run is no dearer than the best run of a lattice of
+// three prices.
+TEST(TimingJourney, TwoBindingWindowsOnALongPartAreMetAndNoDearerThanALattice) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = timing_test::rise_track(4000.0, 8000.0, 12000.0, 3.0, "L0", "L1");
+  const TwoLatest two = two_latest_windows(train, track, {4000.0, 8000.0}, 700.0, 700.0);
+  const TimingJourneyOptions options = coarse();
+  const TimingJourneySolution sol =
+      solve_timing_journey(train, track, two.windows, options, "long");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  expect_both_bind_latest(sol, two.latest_s, options.time_tolerance_s);
+  EXPECT_NEAR(sol.journey.sections.at(0).run.sim.running_time_s, 700.0, 1e-3);  // zero width
+  // The wide lattice: factors of 1.8 either side of the solver's prices, twice. Lattice runs
+  // arriving up to 10 s early count: no price puts a grid run on the second, and a run that
+  // meets the windows earlier bounds the cost at 700 s from above (the optimum's energy does not
+  // rise with more time).
+  expect_no_dearer_than_lattice(sol, train, track, options, {4000.0, 8000.0}, two, 690.0, 700.0,
+                                [](const std::vector<double>& found) {
+                                  std::vector<std::vector<double>> wide(3);
+                                  for (int i = 0; i < 3; ++i) {
+                                    for (double f = 1.0 / (1.8 * 1.8); f <= 1.8 * 1.8 * 1.01;
+                                         f *= 1.8) {
+                                      wide[i].push_back(f * found[i]);
+                                    }
+                                  }
+                                  return wide;
+                                });
 }
 
 TEST(TimingJourney, ABindingEarliestWindowIsMet) {
