@@ -1432,8 +1432,9 @@ class PartSolver {
   // order along the part, cycling until every point and the arrival are within their
   // tolerances (Gauss-Seidel). Unlike search_price, no search re-solves the arrival at each of
   // its evaluations, so a search costs a few runs, not a few dozen, and sees the passing time
-  // as a function of its own price alone. False (prices and run as they were) when the cycles
-  // end without every target met.
+  // as a function of its own price alone. True also when a cycle moves no price and every
+  // target is within kGaussSeidelAccept_s (see below); false (prices and run as they were) when
+  // the cycles end otherwise.
   bool meet_bindings_gauss_seidel(LambdaRun& run) {
     const std::size_t k = binding_.size();
     const std::vector<double> before0 = before_;
