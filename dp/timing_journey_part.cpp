@@ -299,10 +299,9 @@ class PartSolver {
   // How far inside its bound a binding passing point may pass (see search_target_s).
   // (0 once meet_bindings_exactly has put every binding point at its bound.)
   double binding_slack_s() const {
+    if (binding_.size() < 2 || exact_) return 0.0;
     double slack = 0.0;
-    for (std::size_t m = 0; m < binding_.size() && binding_.size() > 1 && !exact_; ++m) {
-      slack = std::max(slack, 2.0 * inside_s(m));
-    }
+    for (std::size_t m = 0; m < binding_.size(); ++m) slack = std::max(slack, 2.0 * inside_s(m));
     return slack;
   }
   // The sign of point k's multiplier: +1 its latest bound binds (the price before it is the
@@ -1439,7 +1438,6 @@ class PartSolver {
     const std::size_t k = binding_.size();
     const std::vector<double> before0 = before_;
     const double after0 = lambda_after_, guess0 = x_after_guess_;
-    std::optional<LambdaRun> current;
     auto time_at = [&](const LambdaRun& r, std::size_t m) {
       return m < k ? passing_at(r.sim.trace, points_[binding_[m]].s_m).t_s : r.sim.running_time_s;
     };
@@ -1455,11 +1453,11 @@ class PartSolver {
       }
       return finite(t) && std::abs(t - target(m)) <= tolerance(m);
     };
-    current = evaluate(before_, lambda_after_);
+    LambdaRun current = evaluate(before_, lambda_after_);
     for (int cycle = 0; cycle < kGaussSeidelCycles; ++cycle) {
       bool moved = false;
       for (std::size_t m = 0; m <= k; ++m) {
-        if (within(*current, m)) continue;
+        if (within(current, m)) continue;
         std::optional<LambdaRun> best;
         double best_abs = kInf, best_x = 0.0;
         auto g = [&](double x) {
@@ -1479,24 +1477,24 @@ class PartSolver {
         double& price = m < k ? before_[m] : lambda_after_;
         moved = moved || std::abs(std::log(price) - best_x) > kNarrowestLogPrice;
         price = std::exp(best_x);
-        current = std::move(best);
+        current = std::move(*best);
       }
       bool all = true;
-      for (std::size_t m = 0; m <= k; ++m) all = all && within(*current, m);
+      for (std::size_t m = 0; m <= k; ++m) all = all && within(current, m);
       // A cycle that moved no price ends the search: each point is then as near its target as
       // its own price can put it (the time jumps across the target between neighbouring
       // prices). It is kept when every point is within kGaussSeidelAccept_s: the Newton step on
       // the switch points (meet_bindings_exactly) closes such gaps.
       bool near = !moved;
       for (std::size_t m = 0; m <= k && near; ++m) {
-        near = within(*current, m) ||
-               std::abs(time_at(*current, m) - target(m)) <= kGaussSeidelAccept_s;
+        near =
+            within(current, m) || std::abs(time_at(current, m) - target(m)) <= kGaussSeidelAccept_s;
       }
       if (all || near) {
         x_after_guess_ = std::log(std::max(1.0, lambda_after_));
         arrival_at_floor_ = lambda_after_ <= 1.0 + 1e-9 &&
-                            current->sim.running_time_s < target_s_ - kArrivalTolerance_s;
-        run = fine(std::move(*current));
+                            current.sim.running_time_s < target_s_ - kArrivalTolerance_s;
+        run = fine(std::move(current));
         return true;
       }
       if (!moved) break;
