@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "base/huge_pages.hpp"
+#include "base/big_blocks.hpp"
 #include "dp/stage_grid.hpp"
 #include "dp/stage_prices.hpp"
 #include "dp/transition_table.hpp"

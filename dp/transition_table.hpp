@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "base/huge_pages.hpp"
+#include "base/big_blocks.hpp"
 #include "dp/objective.hpp"
 #include "dp/stage_grid.hpp"
 #include "dp/stage_work.hpp"

@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "base/huge_pages.hpp"
+#include "base/big_blocks.hpp"
 #include "physics/control.hpp"
 #include "physics/energy_ledger.hpp"
 #include "physics/motion.hpp"

@@ -1,14 +1,14 @@
-// HugePageAllocator: a std::allocator for the DP's largest arrays (transition tables of hundreds
-// of megabytes, value functions of tens) that asks the kernel for 2 MiB pages. Each first touch
-// of a 4 KiB page is a page fault; a 48 km section's table and its price search's value
-// functions took about 585 000 of them, a fifth of the run's time on a virtual machine. Blocks
-// of at least kHugePageMinBytes are aligned to 2 MiB and advised MADV_HUGEPAGE (Linux; where the
-// kernel keeps transparent huge pages to madvised areas, as Debian's does, or has them off, this
-// is a hint and nothing else changes); smaller blocks come from operator new. A freed large block
-// is kept (up to kHugePageCacheBytes in all) for the next request of its size: a price search
-// allocates a value function of the same size for every price, and memory fresh from the kernel
-// is cleared page by page first (a fifth of that search's time). Contents, and so every result,
-// are what std::allocator gives.
+// BigBlockAllocator: a std::allocator for the DP's largest arrays (transition tables of hundreds
+// of megabytes, value functions of tens, simulation traces of a million points). Memory fresh
+// from the kernel is cleared page by page on first touch: a price search that allocated a new
+// value function for every price spent a fifth of its time there. So a freed block of at least
+// kBigBlockMinBytes is kept (up to kBigBlockCacheBytes in all) for the next request of its size,
+// sizes rounded up to kBigBlockGranuleBytes so that vectors of nearly the same length share
+// blocks; smaller blocks come from operator new. Big blocks are advised MADV_NOHUGEPAGE (Linux):
+// on the 2-core virtual machine we measure on, clearing 2 MiB pages took 3.7-4.0 s of system
+// time on the GPOPS-II case against 0.8 s for 4 KiB pages (docs/performance.md, "Memory the
+// kernel clears"), so the arrays are kept on ordinary pages whatever the kernel's default.
+// Contents, and so every result, are what std::allocator gives.
 #pragma once
 
 #include <cstddef>
@@ -25,12 +25,13 @@
 
 namespace ecorail {
 
-inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
-inline constexpr std::size_t kHugePageMinBytes = std::size_t{4} << 20;
+inline constexpr std::size_t kBigBlockGranuleBytes = std::size_t{2} << 20;
+inline constexpr std::size_t kBigBlockMinBytes = std::size_t{4} << 20;
+inline constexpr std::size_t kBigBlockCacheBytes = std::size_t{256} << 20;
+// Where a big block starts: a page, so that madvise can take it.
+inline constexpr std::size_t kBigBlockAlignBytes = 4096;
 
-inline constexpr std::size_t kHugePageCacheBytes = std::size_t{256} << 20;
-
-namespace huge_pages {
+namespace big_blocks {
 namespace detail {
 
 struct Cache {
@@ -48,7 +49,8 @@ inline Cache& cache() {
 
 }  // namespace detail
 
-// A block of `bytes` (a multiple of kHugePageBytes), from the cache or fresh; never nullptr.
+// A block of `bytes` (a multiple of kBigBlockGranuleBytes), from the cache or fresh; never
+// nullptr.
 inline void* allocate(std::size_t bytes) {
   {
     detail::Cache& c = detail::cache();
@@ -61,10 +63,10 @@ inline void* allocate(std::size_t bytes) {
       return block;
     }
   }
-  void* block = std::aligned_alloc(kHugePageBytes, bytes);
+  void* block = std::aligned_alloc(kBigBlockAlignBytes, bytes);
   if (block == nullptr) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  ::madvise(block, bytes, MADV_HUGEPAGE);  // a hint: failure leaves ordinary pages
+#if defined(__linux__) && defined(MADV_NOHUGEPAGE)
+  ::madvise(block, bytes, MADV_NOHUGEPAGE);  // a hint: failure leaves the kernel's default
 #endif
   return block;
 }
@@ -74,7 +76,7 @@ inline void release(void* block, std::size_t bytes) noexcept {
   detail::Cache& c = detail::cache();
   {
     const std::lock_guard<std::mutex> lock(c.mutex);
-    if (c.bytes + bytes <= kHugePageCacheBytes) {
+    if (c.bytes + bytes <= kBigBlockCacheBytes) {
       try {
         c.blocks.emplace_back(block, bytes);
         c.bytes += bytes;
@@ -86,27 +88,27 @@ inline void release(void* block, std::size_t bytes) noexcept {
   }
   std::free(block);
 }
-}  // namespace huge_pages
+}  // namespace big_blocks
 
 template <typename T>
-struct HugePageAllocator {
+struct BigBlockAllocator {
   using value_type = T;
-  HugePageAllocator() = default;
+  BigBlockAllocator() = default;
   template <typename U>
-  HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+  BigBlockAllocator(const BigBlockAllocator<U>&) noexcept {}
 
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < kHugePageMinBytes) return static_cast<T*>(::operator new(bytes));
-    return static_cast<T*>(huge_pages::allocate(rounded(bytes)));
+    if (bytes < kBigBlockMinBytes) return static_cast<T*>(::operator new(bytes));
+    return static_cast<T*>(big_blocks::allocate(rounded(bytes)));
   }
   void deallocate(T* p, std::size_t n) noexcept {
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < kHugePageMinBytes) {
+    if (bytes < kBigBlockMinBytes) {
       ::operator delete(p);
     } else {
-      huge_pages::release(p, rounded(bytes));
+      big_blocks::release(p, rounded(bytes));
     }
   }
   // resize() default-initialises, as new T[n] does: elements of a trivially constructible T are
@@ -121,16 +123,16 @@ struct HugePageAllocator {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   static std::size_t rounded(std::size_t bytes) {
-    return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    return (bytes + kBigBlockGranuleBytes - 1) / kBigBlockGranuleBytes * kBigBlockGranuleBytes;
   }
   template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const noexcept {
+  bool operator==(const BigBlockAllocator<U>&) const noexcept {
     return true;
   }
 };
 
 // A vector of the DP's size: millions of grid nodes.
 template <typename T>
-using BigVector = std::vector<T, HugePageAllocator<T>>;
+using BigVector = std::vector<T, BigBlockAllocator<T>>;
 
 }  // namespace ecorail
