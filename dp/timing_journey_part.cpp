@@ -1080,6 +1080,7 @@ class PartSolver {
     if (!residuals(run.sim, r0)) return std::nullopt;
     LambdaRun at = run;
     double a = 0.0, step = 0.25;
+    std::vector<double> jac;
     while (a < 1.0) {
       const double next = std::min(1.0, a + step);
       auto part = [&](const physics::SimulationResult& sim, std::vector<double>& r) {
@@ -1089,7 +1090,7 @@ class PartSolver {
         }
         return ok;
       };
-      std::optional<LambdaRun> cand = newton_on_switches(at, part);
+      std::optional<LambdaRun> cand = newton_on_switches(at, part, &jac);
       if (cand) {
         at = std::move(*cand);
         a = next;
@@ -1101,41 +1102,77 @@ class PartSolver {
     return at;
   }
 
-  // Newton's method on the switch positions of run's program for residuals(sim, r) = 0 (each
-  // scaled so that |r_i| <= 1 is met): the Jacobian by finite differences on the simulator (one
-  // re-simulation per switch, resumed where the programs agree), the step of least weighted
-  // length that zeroes the linear model (W J^T (J W J^T)^-1 r, W: each switch's room, squared),
-  // halved while it does not lower the largest residual or would reorder the switches. The run
-  // that meets every residual, or nullopt.
+  // The Jacobian (q x u, row-major) of the residuals r of run over its program's switches (entry
+  // 0 of the program is the start), by forward differences (backward where a switch cannot move
+  // forward), one re-simulation per switch resumed where the programs agree; a column a
+  // re-simulation gives no residuals for is left at 0 (that switch is not used).
   template <typename Residuals>
-  std::optional<LambdaRun> newton_on_switches(const LambdaRun& run, Residuals& residuals) {
+  std::vector<double> switch_jacobian(const LambdaRun& run, Residuals& residuals,
+                                      const std::vector<double>& r) {
+    constexpr double kStep_m = 0.5;
+    const physics::ControlProgram& prog = run.program;
+    const std::size_t n = prog.size(), q = r.size(), u = n - 1;
+    const double length = engine_.route().length_m();
+    std::vector<double> jac(q * u, 0.0), rk;
+    for (std::size_t c = 0; c < u; ++c) {
+      const std::size_t k = c + 1;
+      const double next = k + 1 < n ? prog[k + 1].from_m : length;
+      const double h = prog[k].from_m + kStep_m < next ? kStep_m : -kStep_m;
+      if (prog[k].from_m + h <= prog[k - 1].from_m) continue;
+      physics::ControlProgram p = prog;
+      p[k].from_m += h;
+      const physics::SimulationResult sim = engine_.resimulate(p, run.start, run.sim);
+      ++evaluations_;
+      if (!residuals(sim, rk)) continue;
+      for (std::size_t i = 0; i < q; ++i) jac[i * u + c] = (rk[i] - r[i]) / h;
+    }
+    return jac;
+  }
+
+  // Newton's method on the switch positions of run's program for residuals(sim, r) = 0 (each
+  // scaled so that |r_i| <= 1 is met): the Jacobian by finite differences on the simulator
+  // (switch_jacobian), the step of least weighted length that zeroes the linear model
+  // (W J^T (J W J^T)^-1 r, W: each switch's room, squared), halved while it does not lower the
+  // largest residual or would reorder the switches. After a step the Jacobian is updated by
+  // Broyden's rank-one formula (a run has 20-80 switches, each difference a re-simulation) and
+  // differenced again only when the updated one gives no step; two steps on fresh differences
+  // that each take off less than a tenth of the largest residual end the solve (a kink of the
+  // simulator: such solves spent thousands of re-simulations without converging). The run that
+  // meets every residual, or nullopt.
+  template <typename Residuals>
+  std::optional<LambdaRun> newton_on_switches(const LambdaRun& run, Residuals& residuals,
+                                              std::vector<double>* jac_io = nullptr) {
     std::vector<double> r;
     if (!residuals(run.sim, r)) return std::nullopt;
     LambdaRun cand = run;
     const double length = engine_.route().length_m();
-    constexpr double kStep_m = 0.5;      // finite-difference step of a switch
     constexpr double kMaxRoom_m = 50.0;  // a switch's weight stops growing with its room
-    for (int iter = 0; iter < kNewtonIterations && max_abs(r) > 1.0; ++iter) {
+    // J (q x u) of the current run, or a Broyden update of one (also the caller's, jac_io: a
+    // continuation's solves differ by constants in their residuals, not in their Jacobian).
+    std::vector<double> jac;
+    if (jac_io != nullptr) jac = std::move(*jac_io);
+    struct GiveBack {
+      std::vector<double>& jac;
+      std::vector<double>* to;
+      ~GiveBack() {
+        if (to != nullptr) *to = std::move(jac);
+      }
+    } give_back{jac, jac_io};
+    bool fresh = false;  // jac is the finite differences of the current run
+    int jacobians = 0, stalls = 0;
+    for (int iter = 0; iter < kBroydenIterations && max_abs(r) > 1.0; ++iter) {
       const physics::ControlProgram& prog = cand.program;
       const std::size_t n = prog.size();
       std::vector<std::size_t> sw;  // the program's switches (entry 0 is the start)
       for (std::size_t k = 1; k < n; ++k) sw.push_back(k);
       const std::size_t q = r.size(), u = sw.size();
       if (u == 0) return std::nullopt;
-      // J (q x u), by forward differences (backward where the switch cannot move forward).
-      std::vector<double> jac(q * u, 0.0);
-      std::vector<double> rk;
-      for (std::size_t c = 0; c < u; ++c) {
-        const std::size_t k = sw[c];
-        const double next = k + 1 < n ? prog[k + 1].from_m : length;
-        const double h = prog[k].from_m + kStep_m < next ? kStep_m : -kStep_m;
-        if (prog[k].from_m + h <= prog[k - 1].from_m) continue;
-        physics::ControlProgram p = prog;
-        p[k].from_m += h;
-        const physics::SimulationResult sim = engine_.resimulate(p, cand.start, cand.sim);
-        ++evaluations_;
-        if (!residuals(sim, rk)) continue;  // (a column left at 0: that switch is not used)
-        for (std::size_t i = 0; i < q; ++i) jac[i * u + c] = (rk[i] - r[i]) / h;
+      if (jac.size() != q * u) jac.clear();
+      if (jac.empty()) {
+        if (jacobians == kNewtonIterations) break;
+        jac = switch_jacobian(cand, residuals, r);
+        fresh = true;
+        ++jacobians;
       }
       // y = (J J^T + eps I)^-1 r, dx = -J^T y.
       // Weighted by each switch's room (the shorter of the phases on either side, squared):
@@ -1159,9 +1196,12 @@ class PartSolver {
       }
       double diag = 0.0;
       for (std::size_t i = 0; i < q; ++i) diag = std::max(diag, a[i * q + i]);
-      if (!(diag > 0.0)) return std::nullopt;
       for (std::size_t i = 0; i < q; ++i) a[i * q + i] += 1e-12 * diag;
-      if (!solve_dense(a, y, q)) return std::nullopt;
+      if (!(diag > 0.0) || !solve_dense(a, y, q)) {
+        if (fresh) return std::nullopt;
+        jac.clear();  // an updated Jacobian gone singular: differences again
+        continue;
+      }
       std::vector<double> dx(u, 0.0);
       for (std::size_t c = 0; c < u; ++c) {
         for (std::size_t i = 0; i < q; ++i) dx[c] -= wt[c] * jac[i * u + c] * y[i];
@@ -1182,12 +1222,31 @@ class PartSolver {
         ++evaluations_;
         std::vector<double> rn;
         if (!residuals(sim, rn) || !(max_abs(rn) < before)) continue;
+        // Broyden's update of J for the step taken: J += (dr - J s) s^T / (s^T s).
+        double ss = 0.0;
+        for (std::size_t c = 0; c < u; ++c) ss += f * dx[c] * f * dx[c];
+        for (std::size_t i = 0; i < q && ss > 0.0; ++i) {
+          double js = 0.0;
+          for (std::size_t c = 0; c < u; ++c) js += jac[i * u + c] * f * dx[c];
+          const double g = (rn[i] - r[i] - js) / ss;
+          for (std::size_t c = 0; c < u; ++c) jac[i * u + c] += g * f * dx[c];
+        }
         cand.program = std::move(p);
         cand.sim = std::move(sim);
         r = std::move(rn);
         moved = true;
       }
-      if (!moved) return std::nullopt;
+      if (moved) {
+        // Steps on fresh differences that each take off less than a tenth of the largest
+        // residual: the solve is stuck on a kink of the simulator, not converging.
+        stalls = fresh && max_abs(r) > kNewtonStall * before ? stalls + 1 : fresh ? 0 : stalls;
+        if (stalls == kNewtonStalls) break;
+        fresh = false;
+      } else if (fresh) {
+        return std::nullopt;
+      } else {
+        jac.clear();  // the updated Jacobian led nowhere: differences again
+      }
     }
     if (!(max_abs(r) <= 1.0)) return std::nullopt;
     return cand;
@@ -1547,7 +1606,10 @@ class PartSolver {
   static constexpr double kGaussSeidelLogStep = 0.05;
   static constexpr double kGaussSeidelAccept_s = 1.0;
   static constexpr double kLongPart_m = 10000.0;  // see long_part
-  static constexpr int kNewtonIterations = 12;    // of meet_bindings_exactly
+  static constexpr int kNewtonIterations = 12;    // Jacobians of newton_on_switches
+  static constexpr int kBroydenIterations = 36;   // steps of newton_on_switches
+  static constexpr double kNewtonStall = 0.9;     // see newton_on_switches
+  static constexpr int kNewtonStalls = 2;
   // Newton solves of meet_bindings_exactly, each with the windows the one before missed held.
   static constexpr int kMissedWindowRounds = 4;
   static constexpr double kShortPhase_m = 5.0;  // see newton_without_short_phases
