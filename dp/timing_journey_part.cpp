@@ -1584,7 +1584,7 @@ class PartSolver {
     };
     // The cycles need not converge: a price moves its own point most, but the later ones by
     // seconds, and the passing times jump between neighbouring prices; traced on a hard random
-    // journey, a cycle within 0.93 s of every target was followed by four ending 5-23 s away.
+    // journey, a cycle within 0.93 s of every target was followed by four ending 4-20 s away.
     // So the end of the cycle nearest every target is kept, the cycles stop after kStaleCycles
     // that come no nearer, and the joint Newton step (meet_bindings_exactly) starts from it.
     struct Snapshot {
