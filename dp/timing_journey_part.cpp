@@ -1147,17 +1147,11 @@ class PartSolver {
     LambdaRun cand = run;
     const double length = engine_.route().length_m();
     constexpr double kMaxRoom_m = 50.0;  // a switch's weight stops growing with its room
-    // J (q x u) of the current run, or a Broyden update of one (also the caller's, jac_io: a
-    // continuation's solves differ by constants in their residuals, not in their Jacobian).
-    std::vector<double> jac;
-    if (jac_io != nullptr) jac = std::move(*jac_io);
-    struct GiveBack {
-      std::vector<double>& jac;
-      std::vector<double>* to;
-      ~GiveBack() {
-        if (to != nullptr) *to = std::move(jac);
-      }
-    } give_back{jac, jac_io};
+    // J (q x u) of the current run, or a Broyden update of one; the caller's (jac_io) when it
+    // passes one: a continuation's solves differ by constants in their residuals, not in their
+    // Jacobian.
+    std::vector<double> own;
+    std::vector<double>& jac = jac_io != nullptr ? *jac_io : own;
     bool fresh = false;  // jac is the finite differences of the current run
     int jacobians = 0, stalls = 0;
     for (int iter = 0; iter < kBroydenIterations && max_abs(r) > 1.0; ++iter) {
@@ -1210,9 +1204,11 @@ class PartSolver {
       const double before = max_abs(r);
       bool moved = false;
       for (double f = 1.0; f > 1e-3 && !moved; f *= 0.5) {
+        std::vector<double> step(u);
+        for (std::size_t c = 0; c < u; ++c) step[c] = f * dx[c];
         physics::ControlProgram p = prog;
         bool ordered = true;
-        for (std::size_t c = 0; c < u; ++c) p[sw[c]].from_m += f * dx[c];
+        for (std::size_t c = 0; c < u; ++c) p[sw[c]].from_m += step[c];
         for (std::size_t k = 1; k < n && ordered; ++k) {
           const double next = k + 1 < n ? p[k + 1].from_m : length;
           ordered = p[k].from_m > p[k - 1].from_m + 1e-6 && p[k].from_m < next - 1e-6;
@@ -1224,12 +1220,12 @@ class PartSolver {
         if (!residuals(sim, rn) || !(max_abs(rn) < before)) continue;
         // Broyden's update of J for the step taken: J += (dr - J s) s^T / (s^T s).
         double ss = 0.0;
-        for (std::size_t c = 0; c < u; ++c) ss += f * dx[c] * f * dx[c];
+        for (std::size_t c = 0; c < u; ++c) ss += step[c] * step[c];
         for (std::size_t i = 0; i < q && ss > 0.0; ++i) {
           double js = 0.0;
-          for (std::size_t c = 0; c < u; ++c) js += jac[i * u + c] * f * dx[c];
+          for (std::size_t c = 0; c < u; ++c) js += jac[i * u + c] * step[c];
           const double g = (rn[i] - r[i] - js) / ss;
-          for (std::size_t c = 0; c < u; ++c) jac[i * u + c] += g * f * dx[c];
+          for (std::size_t c = 0; c < u; ++c) jac[i * u + c] += g * step[c];
         }
         cand.program = std::move(p);
         cand.sim = std::move(sim);
@@ -1239,7 +1235,7 @@ class PartSolver {
       if (moved) {
         // Steps on fresh differences that each take off less than a tenth of the largest
         // residual: the solve is stuck on a kink of the simulator, not converging.
-        stalls = fresh && max_abs(r) > kNewtonStall * before ? stalls + 1 : fresh ? 0 : stalls;
+        if (fresh) stalls = max_abs(r) > kNewtonStall * before ? stalls + 1 : 0;
         if (stalls == kNewtonStalls) break;
         fresh = false;
       } else if (fresh) {
