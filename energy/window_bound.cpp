@@ -100,11 +100,16 @@ struct Tables {
   std::vector<double> W, S, E;
   // charge[x][B][C][A]: the most train k can add from t_{k+4} on (it is then fifth newest or
   // older), at the step that adds h_{k+3} (cell C) after h_{k+1}, h_{k+2} (cells A, B), when
-  // h_k lies in the core (x = 0) or below it (x = 1): zero unless the four can sum below L.
-  std::vector<double> charge[2];
+  // h_k lies in class x (0 the core, then bands below it): zero unless the four can sum below L.
+  std::vector<std::vector<double>> charge;
   // What the DP reads, as floats rounded up (a bound stays a bound; half the memory traffic of
   // doubles): Wf = W (no older train yet), Wc[x] = W + charge[x].
-  std::vector<float> Wf, Wc[2];
+  std::vector<float> Wf;
+  std::vector<std::vector<float>> Wc;
+  // Classes of h_k (the headway before the state's two): 0 the core, then bands of short cells
+  // ever further below it; each a contiguous run of cells [first, end).
+  std::vector<int> class_of_cell, class_first, class_end;
+  int classes() const { return static_cast<int>(class_first.size()); }
   double active_s = 0.0;
 };
 
@@ -189,16 +194,91 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
       }
     }
   }
-  // Charges for a fifth train: E(s4) with s4 at least h_k's least value plus the cells' least
-  // sum (and never below 4 hmax less the deficit).
-  for (int x = 0; x < 2; ++x) {
-    const long hk_lo = x == 0 ? hc : hmin;
+  // Charges for a fifth train (train k from t_{k+4} on, when it is fifth newest or older): the
+  // tighter of two bounds on what it adds, each taken at the least s4 = h_k + .. + h_{k+3} the
+  // cells and h_k's class allow (both only shrink as s4 grows).
+  //  - E(s4): at most max(R, T) of train k in every bin.
+  //  - By pairs: adding train k to the newer trains N of a bin adds at most
+  //    min(R_k, T_N) + min(T_k, R_N) + min(R_k, T_k) <= self + sum_i (min(R_k, T_i) + min(T_k,
+  //    R_i)), so train k adds at most S(s4) plus, for each newer train i, Q(g_i, s4) at its gap g_i
+  //    from train k: k+1..k+4 at h_k, h_k + a, h_k + a + b and s4 (each the largest over the range
+  //    the cells and the class allow), k+5 and later at the largest P beyond their least gap.
+  // The charge is zero where the four cannot sum below L (train k is then done by t_{k+4}). h_k
+  // also keeps the deficit: the four miss 4 hmax by at most the span's deficit.
+  const int K = 16;  // block of gaps for the range maxima (a block's max bounds its members)
+  const int nblk = L / K + 1;
+  std::vector<double> qblock(static_cast<std::size_t>(L + 1) * nblk, 0.0);
+  for (int gap = 0; gap <= L; ++gap)
+    for (int s = 0; s <= L; ++s) {
+      double& m = qblock[static_cast<std::size_t>(s) * nblk + gap / K];
+      m = std::max(m, pt.Q(gap, s));
+    }
+  // The most Q(g, s) over g in [g_lo, g_hi] (whole blocks: a superset of the range).
+  auto range_max = [&](long g_lo, long g_hi, long s) {
+    g_lo = std::max(0L, g_lo), g_hi = std::min<long>(L, g_hi);
+    if (g_lo > g_hi || s > L) return 0.0;
+    s = std::max(0L, s);
+    const double* row = &qblock[static_cast<std::size_t>(s) * nblk];
+    double m = 0.0;
+    for (long blk = g_lo / K; blk <= g_hi / K; ++blk) m = std::max(m, row[blk]);
+    return m;
+  };
+  // The largest P(g) over g >= gap (P is zero from L on).
+  std::vector<double> p_beyond(L + 2, 0.0);
+  for (int g = L; g >= 0; --g) p_beyond[g] = std::max(p_beyond[g + 1], pt.P(g));
+  auto p_from = [&](long g) { return g > L ? 0.0 : p_beyond[std::max(0L, g)]; };
+  // Classes: the core, then short cells in bands by their distance below it.
+  tb.class_of_cell.assign(D, 0);
+  tb.class_first = {cl.short_cells};
+  tb.class_end = {D};
+  {
+    // Bands end where WindowBoundOptions::short_band_ends_s says (one more takes the rest): the
+    // charges take the largest value over h_k's band, so narrow bands make them tighter.
+    const std::vector<int>& band_end_s = o.short_band_ends_s;
+    const int nb = static_cast<int>(band_end_s.size());
+    int prev = 0;
+    for (int c = cl.short_cells - 1; c >= 0; --c) {
+      int band = 1;
+      while (band <= nb && hc - cl.lo[c] > band_end_s[band - 1]) ++band;
+      if (band != prev) {
+        tb.class_first.push_back(c);
+        tb.class_end.push_back(c + 1);
+        prev = band;
+      }
+      tb.class_first.back() = c;
+      tb.class_of_cell[c] = tb.classes() - 1;
+    }
+  }
+  const int nx = tb.classes();
+  tb.charge.assign(nx, {});
+  tb.Wc.assign(nx, {});
+  for (int x = 0; x < nx; ++x) {
+    const long class_lo = cl.lo[tb.class_first[x]], class_hi = cl.hi[tb.class_end[x] - 1];
     tb.charge[x].assign(tb.W.size(), 0.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int A = 0; A < D; ++A)
       for (int B = 0; B < D; ++B)
         for (int C = 0; C < D; ++C) {
-          const long s4 = std::max(hk_lo + cl.lo[A] + cl.lo[B] + cl.lo[C], 4L * hmax - deficit);
-          tb.charge[x][(static_cast<std::size_t>(B) * D + C) * D + A] = pt.E(s4);
+          const long lo3 = static_cast<long>(cl.lo[A]) + cl.lo[B] + cl.lo[C];
+          const long hi3 = static_cast<long>(cl.hi[A]) + cl.hi[B] + cl.hi[C];
+          const long hk_lo = std::max(class_lo, 4L * hmax - deficit - hi3);
+          const long hk_hi = std::min(class_hi, static_cast<long>(L) - 1 - lo3);
+          double charge = 0.0;
+          if (hk_lo <= hk_hi) {
+            const long s4 = std::max(hk_lo + lo3, 4L * hmax - deficit);
+            const long hiA = cl.hi[A], hiAB = hiA + cl.hi[B];
+            const long loA = cl.lo[A], loAB = loA + cl.lo[B];
+            double pairs =
+                pt.S(s4) + range_max(hk_lo, hk_hi, s4) + range_max(hk_lo + loA, hk_hi + hiA, s4) +
+                range_max(hk_lo + loAB, hk_hi + hiAB, s4) + range_max(s4, hk_hi + hi3, s4);
+            for (long m = 5; m * hmin < L + 4L * hmin; ++m) {
+              const long g = std::max(s4 + (m - 4) * hmin, m * hmax - deficit);
+              if (g >= L) break;
+              pairs += p_from(g);
+            }
+            charge = std::min(pt.E(s4), pairs);
+          }
+          tb.charge[x][(static_cast<std::size_t>(B) * D + C) * D + A] = charge;
         }
   }
   // 3. First two windows (train 1 alone over h1, trains 1 and 2 over h2) and the last window
@@ -231,13 +311,13 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
       }
   }
   tb.Wf.resize(tb.W.size());
-  for (int x = 0; x < 2; ++x) tb.Wc[x].resize(tb.W.size());
+  for (int x = 0; x < nx; ++x) tb.Wc[x].resize(tb.W.size());
   for (std::size_t i = 0; i < tb.W.size(); ++i) {
     tb.Wf[i] = float_up(tb.W[i]);
-    for (int x = 0; x < 2; ++x) tb.Wc[x][i] = float_up(tb.W[i] + tb.charge[x][i]);
+    for (int x = 0; x < nx; ++x) tb.Wc[x][i] = float_up(tb.W[i] + tb.charge[x][i]);
   }
   std::vector<double>().swap(tb.W);
-  for (int x = 0; x < 2; ++x) std::vector<double>().swap(tb.charge[x]);
+  for (int x = 0; x < nx; ++x) std::vector<double>().swap(tb.charge[x]);
   return tb;
 }
 
@@ -251,31 +331,32 @@ struct DualRun {
 // that mu favours.
 DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads, long& work) {
   const Cells& cl = tb.cells;
-  const int D = cl.D, n = p.trains - 1, Ds = cl.short_cells;
+  const int D = cl.D, n = p.trains - 1;
   auto hx = [&](int C) { return mu >= 0.0 ? cl.hi[C] : cl.lo[C]; };
   // V[x][B][A]: best value with last headways in cells A, B, the one before A of class x.
   const std::size_t DD = static_cast<std::size_t>(D) * D;
-  std::vector<double> V(2 * DD, kNone), next(2 * DD);
+  const int nx = tb.classes();
+  std::vector<double> V(nx * DD, kNone), next(nx * DD);
   for (int A = 0; A < D; ++A)
     for (int B = 0; B < D; ++B)
       V[static_cast<std::size_t>(B) * D + A] =
           tb.S[static_cast<std::size_t>(A) * D + B] + mu * (hx(A) + hx(B));
   std::vector<std::vector<std::uint16_t>> back(n + 1);
   for (int j = 3; j <= n; ++j) {
-    back[j].assign(2 * DD, 0);
+    back[j].assign(nx * DD, 0);
     std::vector<std::uint16_t>& bp = back[j];
     const bool charged = j >= 4;  // train j-3 exists
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int B = 0; B < D; ++B) {
       for (int C = 0; C < D; ++C) {
         const std::size_t row = (static_cast<std::size_t>(B) * D + C) * D;
-        // y = 1: the oldest headway A is short (cells 0..Ds-1), y = 0: in the core. The max
-        // first (a plain reduction the compiler vectorises), then the first A that reaches it.
-        for (int y = 0; y < 2; ++y) {
-          const int a0 = y == 1 ? 0 : Ds, a1 = y == 1 ? Ds : D;
+        // y: the class of the oldest headway A (its cells are contiguous). The max first (a
+        // plain reduction the compiler vectorises), then the first A that reaches it.
+        for (int y = 0; y < nx; ++y) {
+          const int a0 = tb.class_first[y], a1 = tb.class_end[y];
           double best = kNone;
           int arg = 0;
-          for (int x = 0; x < 2; ++x) {
+          for (int x = 0; x < nx; ++x) {
             const double* v = &V[x * DD + static_cast<std::size_t>(B) * D];
             const float* w = charged ? &tb.Wc[x][row] : &tb.Wf[row];
             double m = kNone;
@@ -287,7 +368,7 @@ DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads,
               int A = a0;
               while (v[A] + static_cast<double>(w[A]) != m) ++A;
               best = m;
-              arg = A | (x << 15);
+              arg = A | (x << 12);
             }
           }
           const std::size_t at = y * DD + static_cast<std::size_t>(C) * D + B;
@@ -297,11 +378,11 @@ DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads,
       }
     }
     V.swap(next);
-    work += 2L * D * D * D;
+    work += static_cast<long>(nx) * D * D * D;
   }
   DualRun out;
   int bestA = 0, bestB = 0, bestX = 0;
-  for (int x = 0; x < 2; ++x)
+  for (int x = 0; x < nx; ++x)
     for (int A = 0; A < D; ++A)
       for (int B = 0; B < D; ++B) {
         const double v = V[x * DD + static_cast<std::size_t>(B) * D + A] +
@@ -316,8 +397,8 @@ DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads,
   for (int j = n; j >= 3; --j) {
     const std::uint16_t b =
         back[j][x * DD + static_cast<std::size_t>(cells[j - 1]) * D + cells[j - 2]];
-    cells[j - 3] = b & 0x7fff;
-    x = b >> 15;
+    cells[j - 3] = b & 0xfff;
+    x = b >> 12;
   }
   long sum = 0;
   for (int C : cells) {
@@ -343,6 +424,10 @@ bool WindowBoundOptions::IsValid(std::string* error) const {
   if (!(multiplier_tolerance >= 0.0 && multiplier_tolerance < 1.0))
     return fail("multiplier_tolerance: expected a fraction in [0, 1)");
   if (threads < 0 || threads > 1024) return fail("threads: expected 0 (default) to 1024");
+  if (short_band_ends_s.size() > 14) return fail("short_band_ends_s: expected at most 14 bands");
+  for (std::size_t i = 0; i < short_band_ends_s.size(); ++i)
+    if (short_band_ends_s[i] < 1 || (i > 0 && short_band_ends_s[i] <= short_band_ends_s[i - 1]))
+      return fail("short_band_ends_s: expected ascending positive seconds");
   return true;
 }
 
@@ -372,7 +457,7 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
   out.applicable = true;
   out.active_s = tb.active_s;
   out.core_min_s = tb.cells.hc;
-  if (tb.cells.D > 32767) throw std::length_error("window bound: too many headway cells");
+  if (tb.cells.D > 4095) throw std::length_error("window bound: too many headway cells");
   // Bisection on the multiplier: the excess of the maximiser's sum is a subgradient of the
   // (convex) dual, non-decreasing in mu.
   long work = 0;
@@ -474,7 +559,7 @@ std::vector<double> window_relaxed_values_J(const PowerProfile& profile, const F
       const std::size_t at =
           (static_cast<std::size_t>(cl.cell(h[j - 1])) * D + cl.cell(h[j])) * D + cl.cell(h[j - 2]);
       // From the third window on, train j-3 (from 1) may be fifth newest: its charge.
-      v += j >= 3 ? tb.Wc[h[j - 3] < cl.hc ? 1 : 0][at] : tb.Wf[at];
+      v += j >= 3 ? tb.Wc[tb.class_of_cell[cl.cell(h[j - 3])]][at] : tb.Wf[at];
     }
     v += tb.E[static_cast<std::size_t>(cl.cell(h[n - 2])) * D + cl.cell(h[n - 1])];
     out.push_back(v);

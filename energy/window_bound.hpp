@@ -16,10 +16,13 @@
 //     sum_j G3 + sum_k X4 exactly: a sum of functions of three consecutive headways. Every
 //     headway of at least L/4 (the "core") guarantees it.
 //  3. The rest of the domain: train k can be fifth newest only when h_k..h_{k+3} sum below L.
-//     Its part from t_{k+4} on (the sum of max(R, T) over the rest of its run) is charged at the
-//     DP step that adds h_{k+3}, which knows h_{k+1..k+3} and whether h_k lies in the core (a
-//     class bit in the DP state), at its largest value for that class. Triples with a headway
-//     below the core are valued on a 1 s grid with the fourth train by pairs (min(a, T_N3) <=
+//     What it adds from t_{k+4} on is charged at the DP step that adds h_{k+3}, which knows
+//     h_{k+1..k+3} and the class of h_k (the core or one of a few bands below it, kept in the
+//     DP state), at its largest value for that class: the tighter of the sum of max(R, T) over
+//     the rest of its run and a sum of pairs (adding train k to the newer trains of a bin adds at
+//     most its own min(R, T) plus, for each newer train i, min(R_k, T_i) + min(T_k, R_i)), each
+//     newer train at the gaps the cells and the class allow. Triples with a headway below the
+//     core are valued on a 1 s grid with the fourth train by pairs (min(a, T_N3) <=
 //     sum_i min(a, T_i)), headways below the core grouped in cells at their largest value, and
 //     a triple whose shortfall below 3 headway_max_s exceeds the whole span's is left out (no
 //     feasible timetable holds it). So the bound holds over EVERY timetable within the limits,
@@ -47,7 +50,11 @@ namespace ecorail::energy {
 struct WindowBoundOptions {
   int bound_ticks_per_second = 2;  // grid of the core's exact windows (divides the profile's)
   int short_cell_s = 10;           // width of the cells below the core (s)
-  int max_dual_evaluations = 24;   // DP runs of the multiplier search
+  // Classes of the headway before the DP state's two, below the core: bands ending this many
+  // seconds below it (ascending), one more for the rest. A fifth train's charge is the largest
+  // over its band; each band costs one more class in the DP (about a sixth of its time each).
+  std::vector<int> short_band_ends_s = {20, 60, 100, 140, 200, 280};
+  int max_dual_evaluations = 24;  // DP runs of the multiplier search
   // The multiplier search stops when no multiplier can lower the bound by more than this
   // fraction of it (the crossing of the bracket's tangents shows how much one could).
   double multiplier_tolerance = 1e-5;
