@@ -124,6 +124,96 @@ void max_into(double& slot, double v) {
   if (v > slot) slot = v;
 }
 
+// Classes of the headway before the DP state's two: 0 the core, then the short cells in bands
+// by their distance below it (WindowBoundOptions::short_band_ends_s, one more band for the rest),
+// each a contiguous run of cells, the nearest band first.
+void assign_classes(Tables& tb, int hc, const std::vector<int>& band_end_s) {
+  const Cells& cl = tb.cells;
+  tb.class_of_cell.assign(cl.D, 0);
+  tb.class_first = {cl.short_cells};
+  tb.class_end = {cl.D};
+  const int nb = static_cast<int>(band_end_s.size());
+  int prev = 0;
+  for (int c = cl.short_cells - 1; c >= 0; --c) {
+    int band = 1;
+    while (band <= nb && hc - cl.lo[c] > band_end_s[band - 1]) ++band;
+    if (band != prev) {
+      tb.class_first.push_back(c);
+      tb.class_end.push_back(c + 1);
+      prev = band;
+    }
+    tb.class_first.back() = c;
+    tb.class_of_cell[c] = tb.classes() - 1;
+  }
+}
+
+// Charges for a fifth train (train k from t_{k+4} on, when it is fifth newest or older): the
+// tighter of two bounds on what it adds, each taken at the least s4 = h_k + .. + h_{k+3} the
+// cells and h_k's class allow (both only shrink as s4 grows).
+//  - E(s4): at most max(R, T) of train k in every bin.
+//  - By pairs: adding train k to the newer trains N of a bin adds at most
+//    min(R_k, T_N) + min(T_k, R_N) + min(R_k, T_k) <= self + sum_i (min(R_k, T_i) + min(T_k,
+//    R_i)), so train k adds at most S(s4) plus, for each newer train i, Q(g_i, s4) at its gap g_i
+//    from train k: k+1..k+4 at h_k, h_k + a, h_k + a + b and s4 (each the largest over the range
+//    the cells and the class allow), k+5 and later at the largest P beyond their least gap.
+// The charge is zero where the four cannot sum below L (train k is then done by t_{k+4}). h_k
+// also keeps the deficit: the four miss 4 hmax by at most the span's deficit.
+void fifth_train_charges(Tables& tb, const PairTables& pt, const FleetLimits& p, int threads) {
+  const Cells& cl = tb.cells;
+  const int D = cl.D, L = pt.L;
+  const long hmin = p.headway_min_s, hmax = p.headway_max_s;
+  const long deficit = static_cast<long>(p.trains - 1) * hmax - p.span_s;
+  const int K = 16;  // block of gaps for the range maxima (a block's max bounds its members)
+  const int nblk = L / K + 1;
+  std::vector<double> qblock(static_cast<std::size_t>(L + 1) * nblk, 0.0);
+  for (int gap = 0; gap <= L; ++gap)
+    for (int s = 0; s <= L; ++s) {
+      double& m = qblock[static_cast<std::size_t>(s) * nblk + gap / K];
+      m = std::max(m, pt.Q(gap, s));
+    }
+  // The most Q(g, s) over g in [g_lo, g_hi] (whole blocks: a superset of the range).
+  auto range_max = [&](long g_lo, long g_hi, long s) {
+    g_lo = std::max(0L, g_lo), g_hi = std::min<long>(L, g_hi);
+    if (g_lo > g_hi || s > L) return 0.0;
+    s = std::max(0L, s);
+    const double* row = &qblock[static_cast<std::size_t>(s) * nblk];
+    double m = 0.0;
+    for (long blk = g_lo / K; blk <= g_hi / K; ++blk) m = std::max(m, row[blk]);
+    return m;
+  };
+  // The largest P(g) over g >= gap (P is zero from L on).
+  std::vector<double> p_beyond(L + 2, 0.0);
+  for (int g = L; g >= 0; --g) p_beyond[g] = std::max(p_beyond[g + 1], pt.P(g));
+  const int nx = tb.classes();
+  tb.charge.assign(nx, {});
+  for (int x = 0; x < nx; ++x) {
+    const long class_lo = cl.lo[tb.class_first[x]], class_hi = cl.hi[tb.class_end[x] - 1];
+    tb.charge[x].assign(static_cast<std::size_t>(D) * D * D, 0.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int A = 0; A < D; ++A)
+      for (int B = 0; B < D; ++B)
+        for (int C = 0; C < D; ++C) {
+          const long lo3 = static_cast<long>(cl.lo[A]) + cl.lo[B] + cl.lo[C];
+          const long hi3 = static_cast<long>(cl.hi[A]) + cl.hi[B] + cl.hi[C];
+          const long hk_lo = std::max(class_lo, 4L * hmax - deficit - hi3);
+          const long hk_hi = std::min(class_hi, static_cast<long>(L) - 1 - lo3);
+          if (hk_lo > hk_hi) continue;
+          const long s4 = std::max(hk_lo + lo3, 4L * hmax - deficit);
+          const long loA = cl.lo[A], loAB = loA + cl.lo[B];
+          const long hiA = cl.hi[A], hiAB = hiA + cl.hi[B];
+          double pairs = pt.S(s4) + range_max(hk_lo, hk_hi, s4) +
+                         range_max(hk_lo + loA, hk_hi + hiA, s4) +
+                         range_max(hk_lo + loAB, hk_hi + hiAB, s4) + range_max(s4, hk_hi + hi3, s4);
+          for (long m = 5;; ++m) {  // trains k+5, k+6, ... while one can still meet train k
+            const long g = std::max(s4 + (m - 4) * hmin, m * hmax - deficit);
+            if (g >= L) break;
+            pairs += p_beyond[g];
+          }
+          tb.charge[x][(static_cast<std::size_t>(B) * D + C) * D + A] = std::min(pt.E(s4), pairs);
+        }
+  }
+}
+
 Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const WindowBoundOptions& o,
                     int threads) {
   Tables tb;
@@ -194,93 +284,8 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
       }
     }
   }
-  // Charges for a fifth train (train k from t_{k+4} on, when it is fifth newest or older): the
-  // tighter of two bounds on what it adds, each taken at the least s4 = h_k + .. + h_{k+3} the
-  // cells and h_k's class allow (both only shrink as s4 grows).
-  //  - E(s4): at most max(R, T) of train k in every bin.
-  //  - By pairs: adding train k to the newer trains N of a bin adds at most
-  //    min(R_k, T_N) + min(T_k, R_N) + min(R_k, T_k) <= self + sum_i (min(R_k, T_i) + min(T_k,
-  //    R_i)), so train k adds at most S(s4) plus, for each newer train i, Q(g_i, s4) at its gap g_i
-  //    from train k: k+1..k+4 at h_k, h_k + a, h_k + a + b and s4 (each the largest over the range
-  //    the cells and the class allow), k+5 and later at the largest P beyond their least gap.
-  // The charge is zero where the four cannot sum below L (train k is then done by t_{k+4}). h_k
-  // also keeps the deficit: the four miss 4 hmax by at most the span's deficit.
-  const int K = 16;  // block of gaps for the range maxima (a block's max bounds its members)
-  const int nblk = L / K + 1;
-  std::vector<double> qblock(static_cast<std::size_t>(L + 1) * nblk, 0.0);
-  for (int gap = 0; gap <= L; ++gap)
-    for (int s = 0; s <= L; ++s) {
-      double& m = qblock[static_cast<std::size_t>(s) * nblk + gap / K];
-      m = std::max(m, pt.Q(gap, s));
-    }
-  // The most Q(g, s) over g in [g_lo, g_hi] (whole blocks: a superset of the range).
-  auto range_max = [&](long g_lo, long g_hi, long s) {
-    g_lo = std::max(0L, g_lo), g_hi = std::min<long>(L, g_hi);
-    if (g_lo > g_hi || s > L) return 0.0;
-    s = std::max(0L, s);
-    const double* row = &qblock[static_cast<std::size_t>(s) * nblk];
-    double m = 0.0;
-    for (long blk = g_lo / K; blk <= g_hi / K; ++blk) m = std::max(m, row[blk]);
-    return m;
-  };
-  // The largest P(g) over g >= gap (P is zero from L on).
-  std::vector<double> p_beyond(L + 2, 0.0);
-  for (int g = L; g >= 0; --g) p_beyond[g] = std::max(p_beyond[g + 1], pt.P(g));
-  auto p_from = [&](long g) { return g > L ? 0.0 : p_beyond[std::max(0L, g)]; };
-  // Classes: the core, then short cells in bands by their distance below it.
-  tb.class_of_cell.assign(D, 0);
-  tb.class_first = {cl.short_cells};
-  tb.class_end = {D};
-  {
-    // Bands end where WindowBoundOptions::short_band_ends_s says (one more takes the rest): the
-    // charges take the largest value over h_k's band, so narrow bands make them tighter.
-    const std::vector<int>& band_end_s = o.short_band_ends_s;
-    const int nb = static_cast<int>(band_end_s.size());
-    int prev = 0;
-    for (int c = cl.short_cells - 1; c >= 0; --c) {
-      int band = 1;
-      while (band <= nb && hc - cl.lo[c] > band_end_s[band - 1]) ++band;
-      if (band != prev) {
-        tb.class_first.push_back(c);
-        tb.class_end.push_back(c + 1);
-        prev = band;
-      }
-      tb.class_first.back() = c;
-      tb.class_of_cell[c] = tb.classes() - 1;
-    }
-  }
-  const int nx = tb.classes();
-  tb.charge.assign(nx, {});
-  tb.Wc.assign(nx, {});
-  for (int x = 0; x < nx; ++x) {
-    const long class_lo = cl.lo[tb.class_first[x]], class_hi = cl.hi[tb.class_end[x] - 1];
-    tb.charge[x].assign(tb.W.size(), 0.0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (int A = 0; A < D; ++A)
-      for (int B = 0; B < D; ++B)
-        for (int C = 0; C < D; ++C) {
-          const long lo3 = static_cast<long>(cl.lo[A]) + cl.lo[B] + cl.lo[C];
-          const long hi3 = static_cast<long>(cl.hi[A]) + cl.hi[B] + cl.hi[C];
-          const long hk_lo = std::max(class_lo, 4L * hmax - deficit - hi3);
-          const long hk_hi = std::min(class_hi, static_cast<long>(L) - 1 - lo3);
-          double charge = 0.0;
-          if (hk_lo <= hk_hi) {
-            const long s4 = std::max(hk_lo + lo3, 4L * hmax - deficit);
-            const long hiA = cl.hi[A], hiAB = hiA + cl.hi[B];
-            const long loA = cl.lo[A], loAB = loA + cl.lo[B];
-            double pairs =
-                pt.S(s4) + range_max(hk_lo, hk_hi, s4) + range_max(hk_lo + loA, hk_hi + hiA, s4) +
-                range_max(hk_lo + loAB, hk_hi + hiAB, s4) + range_max(s4, hk_hi + hi3, s4);
-            for (long m = 5; m * hmin < L + 4L * hmin; ++m) {
-              const long g = std::max(s4 + (m - 4) * hmin, m * hmax - deficit);
-              if (g >= L) break;
-              pairs += p_from(g);
-            }
-            charge = std::min(pt.E(s4), pairs);
-          }
-          tb.charge[x][(static_cast<std::size_t>(B) * D + C) * D + A] = charge;
-        }
-  }
+  assign_classes(tb, hc, o.short_band_ends_s);
+  fifth_train_charges(tb, pt, p, threads);
   // 3. First two windows (train 1 alone over h1, trains 1 and 2 over h2) and the last window
   // (the newest three from t_N on; core pairs on the fine grid, the others on 1 s).
   {
@@ -310,8 +315,9 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
         max_into(tb.E[static_cast<std::size_t>(A) * D + cl.cell(b)], cum.back());
       }
   }
+  const int nx = tb.classes();
   tb.Wf.resize(tb.W.size());
-  for (int x = 0; x < nx; ++x) tb.Wc[x].resize(tb.W.size());
+  tb.Wc.assign(nx, std::vector<float>(tb.W.size()));
   for (std::size_t i = 0; i < tb.W.size(); ++i) {
     tb.Wf[i] = float_up(tb.W[i]);
     for (int x = 0; x < nx; ++x) tb.Wc[x][i] = float_up(tb.W[i] + tb.charge[x][i]);
