@@ -137,17 +137,22 @@ void print_journey(const Journey& j) {
   }
 }
 
+// The bench's coarse grid: --ds 10 --dv 0.5 (substeps of 5 m).
+ecorail::dp::TimingJourneyOptions coarse_options() {
+  ecorail::dp::TimingJourneyOptions o;
+  o.engine.grid.ds_m = 10.0;
+  o.engine.grid.dv_kmh = 0.5;
+  o.engine.grid.substep_m = 5.0;
+  return o;
+}
+
 // The journeys are drawn with the coarse grid's engine (the same journeys whatever grid solves
 // them) and solved with `solving`.
 void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourneyOptions& solving) {
   const bool moving = state.range(0) == 1;
   const physics::Train train = ecorail::data::default_train();
   const physics::Route track = rise_track();
-  ecorail::dp::TimingJourneyOptions drawing;
-  drawing.engine.grid.ds_m = 10.0;
-  drawing.engine.grid.dv_kmh = 0.5;
-  drawing.engine.grid.substep_m = 5.0;
-  const ecorail::dp::SectionEngine engine(train, track, drawing.engine);
+  const ecorail::dp::SectionEngine engine(train, track, coarse_options().engine);
   int met = 0, missed = 0, dearer = 0;
   double worst_ratio = 0.0, slowest_s = 0.0;
   for (auto _ : state) {
@@ -197,11 +202,7 @@ void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourne
 }
 
 void BM_RandomTimingWindows(benchmark::State& state) {
-  ecorail::dp::TimingJourneyOptions coarse;
-  coarse.engine.grid.ds_m = 10.0;
-  coarse.engine.grid.dv_kmh = 0.5;
-  coarse.engine.grid.substep_m = 5.0;
-  run_random_windows(state, coarse);
+  run_random_windows(state, coarse_options());
 }
 
 // The same journeys' generator solved at the options `solve` uses by default (5 m x 0.2 km/h).

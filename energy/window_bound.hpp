@@ -52,7 +52,8 @@ struct WindowBoundOptions {
   int short_cell_s = 10;           // width of the cells below the core (s)
   // Classes of the headway before the DP state's two, below the core: bands ending this many
   // seconds below it (ascending), one more for the rest. A fifth train's charge is the largest
-  // over its band; each band costs one more class in the DP (about a sixth of its time each).
+  // over its band; each band is one more class in the DP, whose time grows with the classes
+  // (the reference bound: 5.4 s wall with 2 classes, 13.5 s with these 8; docs/performance.md).
   std::vector<int> short_band_ends_s = {20, 60, 100, 140, 200, 280};
   int max_dual_evaluations = 24;  // DP runs of the multiplier search
   // The multiplier search stops when no multiplier can lower the bound by more than this
