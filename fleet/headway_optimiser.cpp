@@ -240,11 +240,17 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // the anytime rounds' re-annealing): from the full one its structure would be lost.
   std::vector<double> start_temperature;
   if (options.regime_start && plan.price_starts && p.windowed()) {
-    RegimeStart r = build_regime_start(*coarse, p, threads);
+    RegimeStart r = build_regime_start(*coarse, p, threads, &model);
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
-      method_starts = "periodic regimes on a " + std::to_string(r.grid_s) + " s grid, ";
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "periodic regimes on a %d s grid (their runs reordered by %ld evaluations "
+                    "of the model: used %.1f -> %.1f kJ), ",
+                    r.grid_s, r.arrangement_evaluations, r.dp_used_J * 1e-3,
+                    r.arranged_used_J * 1e-3);
+      method_starts = buf;
     }
   }
   report("periodic regimes", 0.0, bound_used);

@@ -6,6 +6,7 @@
 #include <map>
 #include <utility>
 
+#include "fleet/regime_arrangement.hpp"
 #include "fleet/windowed_classes.hpp"
 
 namespace ecorail::fleet {
@@ -116,13 +117,19 @@ RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<Periodic
   std::vector<int> h;
   for (int k = headways, t = ticks; k > 0;) {
     const Block& bl = blocks[back[at(k, t)] - 1];
+    // A regime's label: its two headways in order (a constant: the headway twice), by class.
+    const int lo = bl.h2 == 0 ? bl.h1 : std::min(bl.h1, bl.h2);
+    const int hi = bl.h2 == 0 ? bl.h1 : std::max(bl.h1, bl.h2);
+    const int label = (lo * 4096 + hi) * 2 + (bl.peak ? 1 : 0);
     if (bl.h2 != 0)
       h.push_back(bl.h2), h.push_back(bl.h1), k -= 2;
     else
       h.push_back(bl.h1), k -= 1;
+    out.regime_of_headway.resize(h.size(), label);
     t -= (bl.h1 + bl.h2) / g;
   }
   std::reverse(h.begin(), h.end());
+  std::reverse(out.regime_of_headway.begin(), out.regime_of_headway.end());
   out.departures_s = departures_from_headways(h);
   return out;
 }
@@ -167,7 +174,7 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
 }
 
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& p,
-                               int threads) {
+                               int threads, const energy::FleetEnergyModel* arrange_on) {
   const int g = regime_grid_s(p);
   if (g == 0) return {};
   PeriodicRegimeOptions o;
@@ -187,6 +194,17 @@ RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const Flee
   // The refined regimes lie off the analysis grid: the DP then steps by whole seconds.
   RegimeStart out = regime_start_from(p, 1, std::move(offpeak), std::move(peak));
   out.grid_s = g;
+  if (out.departures_s.empty()) return out;
+  RegimeArrangementOptions ao;
+  ao.threads = threads;
+  const RegimeArrangement a =
+      arrange_regime_runs(arrange_on ? *arrange_on : model, p,
+                          headways_from_departures(out.departures_s), out.regime_of_headway, ao);
+  out.dp_used_J = a.start_used_J;
+  out.arranged_used_J = a.used_J;
+  out.arrangement_evaluations = a.evaluations;
+  out.departures_s = departures_from_headways(a.headways_s);
+  out.regime_of_headway = a.run_of_headway;
   return out;
 }
 

@@ -6,7 +6,8 @@
 // regimes of each class (those worth more than their two constants side by side) valued by their
 // pair regime. Peak windows are thus filled with as many trains as their best peak regime makes
 // worth, and each off-peak stretch with the mixture of regimes that fits its length and count
-// best. Junctions between regimes are not priced (the annealing and polish that follow are).
+// best. Junctions between regimes are not valued by the DP; where in its stretch each regime's
+// run goes is then chosen by pricing the orders with the model (fleet/regime_arrangement.hpp).
 #pragma once
 
 #include <vector>
@@ -22,6 +23,12 @@ struct RegimeStart {
   int grid_s = 0;                             // the grid of the analysis and the DP (0: none fits)
   std::vector<PeriodicRegime> offpeak, peak;  // the analyses (peak empty without windows)
   double predicted_used_J = 0.0;              // the DP's value (junctions not priced)
+  // The regime of each headway (an alternating pair's two headways share one label).
+  std::vector<int> regime_of_headway;
+  // build_regime_start: the model's used energy of the DP's timetable, and of the runs
+  // reordered within their stretches (the start returned); evaluations of that reordering.
+  double dp_used_J = 0.0, arranged_used_J = 0.0;
+  long arrangement_evaluations = 0;
 };
 
 // The coarsest grid of {10, 5} s that divides the span and every window edge, 0 when none does.
@@ -39,9 +46,11 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
                                            std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
                                            int top, int threads);
 
-// Analyses on the grid, the best regimes refined to whole seconds, and the DP by whole seconds;
-// the model is the one the search anneals on.
+// Analyses on the grid, the best regimes refined to whole seconds, the DP by whole seconds, and
+// the runs of its regimes reordered within their stretches; the model is the one the search
+// anneals on.
+// `arrange_on` prices the reordering (the model of the result; `model` when null).
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& problem,
-                               int threads);
+                               int threads, const energy::FleetEnergyModel* arrange_on = nullptr);
 
 }  // namespace ecorail::fleet
