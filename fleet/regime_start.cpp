@@ -42,12 +42,12 @@ ClassBlocks blocks_of(const std::vector<PeriodicRegime>& regimes, int pairs_per_
 }  // namespace
 
 int regime_grid_s(const FleetProblem& p) {
-  for (int g : {10, 5}) {
-    bool fits = p.span_s % g == 0;
-    for (const PeakWindow& w : p.peak_windows) fits = fits && w.from_s % g == 0 && w.to_s % g == 0;
-    if (fits) return g;
-  }
-  return 0;
+  // The analysis only samples each class's range: the DP that follows steps by whole seconds,
+  // so neither the span nor the windows' edges need to fall on this grid (they once had to,
+  // and a peak window moved by 3 s then lost the regime start).
+  int narrowest = p.headway_max_s - p.headway_min_s;
+  if (p.windowed()) narrowest = std::min(narrowest, p.peak_headway_max_s - p.peak_headway_min_s);
+  return narrowest >= 10 ? 10 : std::max(1, narrowest / 2);
 }
 
 RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<PeriodicRegime> offpeak,
@@ -176,7 +176,6 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& p,
                                int threads, const energy::FleetEnergyModel* arrange_on) {
   const int g = regime_grid_s(p);
-  if (g == 0) return {};
   PeriodicRegimeOptions o;
   o.grid_s = g;
   o.threads = threads;
