@@ -41,13 +41,12 @@ ClassBlocks blocks_of(const std::vector<PeriodicRegime>& regimes, int pairs_per_
 
 }  // namespace
 
-int regime_grid_s(const FleetProblem& p) {
-  // The analysis only samples each class's range: the DP that follows steps by whole seconds,
+int regime_grid_s(int lo_s, int hi_s) {
+  // The analysis only samples the class's range: the DP that follows steps by whole seconds,
   // so neither the span nor the windows' edges need to fall on this grid (they once had to,
   // and a peak window moved by 3 s then lost the regime start).
-  int narrowest = p.headway_max_s - p.headway_min_s;
-  if (p.windowed()) narrowest = std::min(narrowest, p.peak_headway_max_s - p.peak_headway_min_s);
-  return narrowest >= 10 ? 10 : std::max(1, narrowest / 2);
+  const int range = hi_s - lo_s;
+  return range >= 10 ? 10 : std::max(1, range / 2);
 }
 
 RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<PeriodicRegime> offpeak,
@@ -175,18 +174,18 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
 
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& p,
                                int threads, const energy::FleetEnergyModel* arrange_on) {
-  const int g = regime_grid_s(p);
   PeriodicRegimeOptions o;
-  o.grid_s = g;
   o.threads = threads;
   o.lo_s = p.headway_min_s;
   o.hi_s = p.headway_max_s;
+  const int g = o.grid_s = regime_grid_s(o.lo_s, o.hi_s);
   std::vector<PeriodicRegime> offpeak = refine_regimes(model, analyse_periodic_regimes(model, o),
                                                        o.lo_s, o.hi_s, kRefinedRegimes, threads);
   std::vector<PeriodicRegime> peak;
   if (p.windowed()) {
     o.lo_s = p.peak_headway_min_s;
     o.hi_s = p.peak_headway_max_s;
+    o.grid_s = regime_grid_s(o.lo_s, o.hi_s);
     peak = refine_regimes(model, analyse_periodic_regimes(model, o), o.lo_s, o.hi_s,
                           kRefinedRegimes, threads);
   }

@@ -20,7 +20,7 @@ namespace ecorail::fleet {
 
 struct RegimeStart {
   std::vector<int> departures_s;              // empty when no timetable exists on the grid
-  int grid_s = 0;                             // the grid of the analysis
+  int grid_s = 0;                             // the grid of the (off-peak) analysis
   std::vector<PeriodicRegime> offpeak, peak;  // the analyses (peak empty without windows)
   double predicted_used_J = 0.0;              // the DP's value (junctions not priced)
   // The regime of each headway (an alternating pair's two headways share one label).
@@ -31,9 +31,9 @@ struct RegimeStart {
   long arrangement_evaluations = 0;
 };
 
-// The grid of the analysis: 10 s, or half the narrowest class's range when that is below 10 s
-// (at least 1 s). The span and the windows' edges may lie anywhere.
-int regime_grid_s(const FleetProblem& problem);
+// The grid of one class's analysis (headways lo_s..hi_s): 10 s, or half the range when that is
+// below 10 s (at least 1 s). The span and the windows' edges may lie anywhere.
+int regime_grid_s(int lo_s, int hi_s);
 
 // The DP alone, on given analyses (sorted as analyse_periodic_regimes returns them); at most
 // `pairs_per_class` alternating pairs of each class become blocks.

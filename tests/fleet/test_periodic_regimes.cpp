@@ -109,7 +109,10 @@ TEST(RegimeStart, WindowsOffTheAnalysisGridStillGetAStart) {
   EnergyModelOptions o;
   o.time_step_s = 1.0;
   const TestFleet fleet(testing::small_pattern().trip, p, o);
-  EXPECT_EQ(regime_grid_s(p), 10);
+  EXPECT_EQ(regime_grid_s(p.headway_min_s, p.headway_max_s), 10);
+  EXPECT_EQ(regime_grid_s(p.peak_headway_min_s, p.peak_headway_max_s), 10);
+  EXPECT_EQ(regime_grid_s(120, 126), 3);  // a narrow class is still sampled
+  EXPECT_EQ(regime_grid_s(120, 120), 1);
   const RegimeStart r = build_regime_start(fleet.model(), p, 2);
   ASSERT_FALSE(r.departures_s.empty());
   EXPECT_EQ(departures_problem(p, r.departures_s), "");
