@@ -240,7 +240,12 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // the anytime rounds' re-annealing): from the full one its structure would be lost.
   std::vector<double> start_temperature;
   if (options.regime_start && plan.price_starts && p.windowed()) {
-    RegimeStart r = build_regime_start(*coarse, p, threads, &model);
+    // With a time limit the start may take half of it; one that is not built by then is
+    // dropped (the other starts remain), so that a short limit is kept.
+    const auto regime_stop = [&] {
+      return options.time_limit_s > 0.0 && past(t0, 0.5 * options.time_limit_s);
+    };
+    RegimeStart r = build_regime_start(*coarse, p, threads, &model, regime_stop);
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);

@@ -66,6 +66,7 @@ std::vector<PeriodicRegime> analyse_periodic_regimes(const energy::FleetEnergyMo
   // Each regime is priced on its own rebuilt models: the order of evaluation does not matter.
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (int r = 0; r < n; ++r) {
+    if (options.stop && options.stop()) continue;
     out[r].used_per_period_J = steady_used_per_period_J(model, out[r].a_s, out[r].b_s);
   }
   return out;

@@ -10,6 +10,7 @@
 // without knowing the line; the fleet search builds its starts from them (fleet/regime_start.hpp).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "energy/fleet_energy_model.hpp"
@@ -27,6 +28,9 @@ struct PeriodicRegimeOptions {
   int grid_s = 10;             // every multiple of grid_s within [lo_s, hi_s]
   int max_spread_s = 120;      // alternating pairs with b - a at most this
   int threads = 0;             // 0: OpenMP's default
+  // Asked between regimes; once it returns true the rest are left unpriced (value 0) and the
+  // analysis returns at once (a caller out of time drops it).
+  std::function<bool()> stop;
 };
 
 // Every regime a <= b on the grid (constants included), in the order (a, b). The model is

@@ -124,7 +124,7 @@ RegimeArrangement arrange_regime_runs(const energy::FleetEnergyModel& model, con
   if (!problem.empty()) throw std::invalid_argument("regime arrangement: the start: " + problem);
   out.start_used_J = out.used_J = used_of(headways_s);
   out.evaluations = 1;
-  for (int round = 0; round < options.max_rounds; ++round) {
+  for (int round = 0; round < options.max_rounds && !(options.stop && options.stop()); ++round) {
     std::vector<Candidate> candidates;
     const std::vector<std::pair<int, int>> st = stretches_of(p, out.headways_s);
     for (std::size_t s = 0; s < st.size(); ++s)

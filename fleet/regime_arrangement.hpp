@@ -11,6 +11,8 @@
 // headways, so every candidate keeps the problem's windows (checked all the same).
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "energy/fleet_energy_model.hpp"
@@ -21,6 +23,8 @@ namespace ecorail::fleet {
 struct RegimeArrangementOptions {
   int max_rounds = 8;  // rounds of (price every candidate, keep the best)
   int threads = 0;     // 0: OpenMP's default
+  // Asked before each round; true ends the search with the best order so far.
+  std::function<bool()> stop;
   bool IsValid(std::string* why) const;
 };
 

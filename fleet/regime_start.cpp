@@ -50,7 +50,8 @@ int regime_grid_s(int lo_s, int hi_s) {
 }
 
 RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<PeriodicRegime> offpeak,
-                              std::vector<PeriodicRegime> peak, int pairs_per_class) {
+                              std::vector<PeriodicRegime> peak, int pairs_per_class,
+                              const std::function<bool()>& stop) {
   RegimeStart out;
   out.grid_s = g;
   out.offpeak = std::move(offpeak);
@@ -93,6 +94,7 @@ RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<Periodic
   const auto at = [&](int k, int t) { return static_cast<std::size_t>(k) * (ticks + 1) + t; };
   value[0][0] = 0.0;
   for (int k = 1; k <= headways; ++k) {
+    if (stop && stop()) return out;
     std::vector<double>& cur = value[k % 3];
     std::fill(cur.begin(), cur.end(), none);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -135,7 +137,8 @@ RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<Periodic
 
 std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model,
                                            std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
-                                           int top, int threads) {
+                                           int top, int threads,
+                                           const std::function<bool()>& stop) {
   std::vector<PeriodicRegime> best = regimes;
   std::stable_sort(best.begin(), best.end(), [](const auto& x, const auto& y) {
     return x.used_per_headway_J() > y.used_per_headway_J();
@@ -147,7 +150,7 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
   for (int i = 0; i < n; ++i) {
     // Hill climbing by whole seconds (a constant stays a constant).
     PeriodicRegime r = best[i];
-    for (bool moved = true; moved;) {
+    for (bool moved = true; moved && !(stop && stop());) {
       moved = false;
       for (auto [da, db] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}}) {
         if (r.a_s == r.b_s && da != db) continue;
@@ -173,28 +176,34 @@ std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model
 }
 
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& p,
-                               int threads, const energy::FleetEnergyModel* arrange_on) {
+                               int threads, const energy::FleetEnergyModel* arrange_on,
+                               const std::function<bool()>& stop) {
+  const auto stopped = [&] { return stop && stop(); };
   PeriodicRegimeOptions o;
   o.threads = threads;
+  o.stop = stop;
   o.lo_s = p.headway_min_s;
   o.hi_s = p.headway_max_s;
   const int g = o.grid_s = regime_grid_s(o.lo_s, o.hi_s);
-  std::vector<PeriodicRegime> offpeak = refine_regimes(model, analyse_periodic_regimes(model, o),
-                                                       o.lo_s, o.hi_s, kRefinedRegimes, threads);
+  std::vector<PeriodicRegime> offpeak = refine_regimes(
+      model, analyse_periodic_regimes(model, o), o.lo_s, o.hi_s, kRefinedRegimes, threads, stop);
   std::vector<PeriodicRegime> peak;
   if (p.windowed()) {
     o.lo_s = p.peak_headway_min_s;
     o.hi_s = p.peak_headway_max_s;
     o.grid_s = regime_grid_s(o.lo_s, o.hi_s);
     peak = refine_regimes(model, analyse_periodic_regimes(model, o), o.lo_s, o.hi_s,
-                          kRefinedRegimes, threads);
+                          kRefinedRegimes, threads, stop);
   }
+  // An analysis cut short would mislead the DP: no start then.
+  if (stopped()) return {};
   // The refined regimes lie off the analysis grid: the DP then steps by whole seconds.
-  RegimeStart out = regime_start_from(p, 1, std::move(offpeak), std::move(peak));
+  RegimeStart out = regime_start_from(p, 1, std::move(offpeak), std::move(peak), 16, stop);
   out.grid_s = g;
   if (out.departures_s.empty()) return out;
   RegimeArrangementOptions ao;
   ao.threads = threads;
+  ao.stop = stop;
   const RegimeArrangement a =
       arrange_regime_runs(arrange_on ? *arrange_on : model, p,
                           headways_from_departures(out.departures_s), out.regime_of_headway, ao);

@@ -10,6 +10,7 @@
 // run goes is then chosen by pricing the orders with the model (fleet/regime_arrangement.hpp).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "energy/fleet_energy_model.hpp"
@@ -36,22 +37,28 @@ struct RegimeStart {
 int regime_grid_s(int lo_s, int hi_s);
 
 // The DP alone, on given analyses (sorted as analyse_periodic_regimes returns them); at most
-// `pairs_per_class` alternating pairs of each class become blocks.
+// `pairs_per_class` alternating pairs of each class become blocks. `stop` (may be empty) is
+// asked once a layer: true gives no start.
 RegimeStart regime_start_from(const FleetProblem& problem, int grid_s,
                               std::vector<PeriodicRegime> offpeak, std::vector<PeriodicRegime> peak,
-                              int pairs_per_class = 16);
+                              int pairs_per_class = 16, const std::function<bool()>& stop = {});
 
 // The `top` best regimes (by used energy per headway) each refined by hill climbing over whole
-// seconds within [lo_s, hi_s], added to the list with the constants of each refined pair.
+// seconds within [lo_s, hi_s], added to the list with the constants of each refined pair; a
+// climb ends early once `stop` (may be empty) returns true.
 std::vector<PeriodicRegime> refine_regimes(const energy::FleetEnergyModel& model,
                                            std::vector<PeriodicRegime> regimes, int lo_s, int hi_s,
-                                           int top, int threads);
+                                           int top, int threads,
+                                           const std::function<bool()>& stop = {});
 
 // Analyses on the grid, the best regimes refined to whole seconds, the DP by whole seconds, and
 // the runs of its regimes reordered within their stretches; the model is the one the search
 // anneals on.
-// `arrange_on` prices the reordering (the model of the result; `model` when null).
+// `arrange_on` prices the reordering (the model of the result; `model` when null). `stop` (may
+// be empty) is asked between regimes and stages: true before the DP gives no start, after it
+// ends the reordering with its best so far.
 RegimeStart build_regime_start(const energy::FleetEnergyModel& model, const FleetProblem& problem,
-                               int threads, const energy::FleetEnergyModel* arrange_on = nullptr);
+                               int threads, const energy::FleetEnergyModel* arrange_on = nullptr,
+                               const std::function<bool()>& stop = {});
 
 }  // namespace ecorail::fleet

@@ -122,5 +122,24 @@ TEST(RegimeStart, WindowsOffTheAnalysisGridStillGetAStart) {
   EXPECT_GE(r.arranged_used_J, r.dp_used_J);
 }
 
+// A start that runs out of time is dropped, not half built: with `stop` true from the outset
+// there is no start; with `stop` true from the DP on (its analyses done) neither.
+TEST(RegimeStart, StoppedStartIsDropped) {
+  FleetProblem p = testing::small_fleet(14, 80, 200, 1601);
+  p.peak_windows = {{403, 707}};
+  p.peak_headway_min_s = 60;
+  p.peak_headway_max_s = 70;
+  EnergyModelOptions o;
+  o.time_step_s = 1.0;
+  const TestFleet fleet(testing::small_pattern().trip, p, o);
+  EXPECT_TRUE(
+      build_regime_start(fleet.model(), p, 2, nullptr, [] { return true; }).departures_s.empty());
+  const RegimeStart whole = build_regime_start(fleet.model(), p, 2);
+  ASSERT_FALSE(whole.departures_s.empty());
+  const RegimeStart cut =
+      regime_start_from(p, 1, whole.offpeak, whole.peak, 16, [] { return true; });
+  EXPECT_TRUE(cut.departures_s.empty());
+}
+
 }  // namespace
 }  // namespace ecorail::fleet

@@ -143,5 +143,19 @@ TEST(RegimeArrangement, TwoRunsEndInTheBetterOrder) {
   EXPECT_NEAR(a.used_J, best, 1e-6);
 }
 
+// Out of time before its first round, the reordering returns the start as it was.
+TEST(RegimeArrangement, StoppedBeforeItsFirstRoundKeepsTheStart) {
+  const Start s = three_stretches();
+  const int span = std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0);
+  const FleetProblem p = windowed_problem(span);
+  const TestFleet fleet(testing::small_pattern().trip, p, one_second());
+  RegimeArrangementOptions o;
+  o.stop = [] { return true; };
+  const RegimeArrangement a = arrange_regime_runs(fleet.model(), p, s.headways_s, s.labels, o);
+  EXPECT_EQ(a.headways_s, s.headways_s);
+  EXPECT_EQ(a.rounds, 0);
+  EXPECT_EQ(a.used_J, a.start_used_J);
+}
+
 }  // namespace
 }  // namespace ecorail::fleet
