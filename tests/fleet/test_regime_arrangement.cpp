@@ -48,6 +48,14 @@ double used_of(const TestFleet& fleet, const std::vector<int>& h) {
   return fleet.evaluate(departures_from_headways(h)).total.used_regen_J;
 }
 
+// The problem whose span is the start's, checked to hold the start.
+FleetProblem problem_for(const Start& s) {
+  const FleetProblem p =
+      windowed_problem(std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0));
+  EXPECT_EQ(departures_problem(p, departures_from_headways(s.headways_s)), "");
+  return p;
+}
+
 EnergyModelOptions one_second() {
   EnergyModelOptions o;
   o.time_step_s = 1.0;
@@ -56,9 +64,7 @@ EnergyModelOptions one_second() {
 
 TEST(RegimeArrangement, NeverLosesAndKeepsEveryStretch) {
   const Start s = three_stretches();
-  const int span = std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0);
-  const FleetProblem p = windowed_problem(span);
-  ASSERT_EQ(departures_problem(p, departures_from_headways(s.headways_s)), "");
+  const FleetProblem p = problem_for(s);
   const TestFleet fleet(testing::small_pattern().trip, p, one_second());
   const RegimeArrangement a = arrange_regime_runs(fleet.model(), p, s.headways_s, s.labels);
   EXPECT_NEAR(a.start_used_J, used_of(fleet, s.headways_s), 1e-6);
@@ -86,9 +92,7 @@ TEST(RegimeArrangement, NeverLosesAndKeepsEveryStretch) {
 // the best of them.
 TEST(RegimeArrangement, GainsAtLeastTheBestSingleMove) {
   const Start s = three_stretches();
-  const int span = std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0);
-  const FleetProblem p = windowed_problem(span);
-  ASSERT_EQ(departures_problem(p, departures_from_headways(s.headways_s)), "");
+  const FleetProblem p = problem_for(s);
   const TestFleet fleet(testing::small_pattern().trip, p, one_second());
   using Runs = std::vector<std::vector<int>>;
   const Runs first = {{90, 90, 90}, {85, 105, 85, 105}, {150}};
@@ -132,9 +136,7 @@ TEST(RegimeArrangement, TwoRunsEndInTheBetterOrder) {
   s.add({200, 200}, 2);
   s.add({60, 60, 60, 60, 60, 60}, 3);
   s.add({120, 120, 120, 120, 120, 120, 120}, 4);
-  const int span = std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0);
-  const FleetProblem p = windowed_problem(span);
-  ASSERT_EQ(departures_problem(p, departures_from_headways(s.headways_s)), "");
+  const FleetProblem p = problem_for(s);
   const TestFleet fleet(testing::small_pattern().trip, p, one_second());
   std::vector<int> swapped = s.headways_s;
   std::rotate(swapped.begin(), swapped.begin() + 4, swapped.begin() + 6);
@@ -146,8 +148,7 @@ TEST(RegimeArrangement, TwoRunsEndInTheBetterOrder) {
 // Out of time before its first round, the reordering returns the start as it was.
 TEST(RegimeArrangement, StoppedBeforeItsFirstRoundKeepsTheStart) {
   const Start s = three_stretches();
-  const int span = std::accumulate(s.headways_s.begin(), s.headways_s.end(), 0);
-  const FleetProblem p = windowed_problem(span);
+  const FleetProblem p = problem_for(s);
   const TestFleet fleet(testing::small_pattern().trip, p, one_second());
   RegimeArrangementOptions o;
   o.stop = [] { return true; };
