@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "fleet/regime_arrangement.hpp"
@@ -116,12 +117,15 @@ RegimeStart regime_start_from(const FleetProblem& p, int g, std::vector<Periodic
   if (value[headways % 3][ticks] == none) return out;
   out.predicted_used_J = value[headways % 3][ticks];
   std::vector<int> h;
+  // A regime's label: one per (its two headways in order, a constant's twice; its class).
+  std::map<std::tuple<int, int, bool>, int> label_of;
   for (int k = headways, t = ticks; k > 0;) {
     const Block& bl = blocks[back[at(k, t)] - 1];
-    // A regime's label: its two headways in order (a constant: the headway twice), by class.
     const int lo = bl.h2 == 0 ? bl.h1 : std::min(bl.h1, bl.h2);
     const int hi = bl.h2 == 0 ? bl.h1 : std::max(bl.h1, bl.h2);
-    const int label = (lo * 4096 + hi) * 2 + (bl.peak ? 1 : 0);
+    const int label =
+        label_of.emplace(std::tuple{lo, hi, bl.peak}, static_cast<int>(label_of.size()))
+            .first->second;
     if (bl.h2 != 0)
       h.push_back(bl.h2), h.push_back(bl.h1), k -= 2;
     else
