@@ -23,7 +23,7 @@ bool RegimeArrangementOptions::IsValid(std::string* why) const {
 
 namespace {
 
-// Runs with more than this many runs in one stretch move only to the stretch's two ends (the
+// In a stretch of more than this many runs each run moves only to the stretch's two ends (the
 // candidates grow with the square of the runs).
 constexpr int kRunsForAllPlaces = 12;
 
@@ -79,14 +79,16 @@ void add_candidates(const std::vector<int>& h, const std::vector<int>& label, in
   };
   std::vector<int> identity(m);
   for (int r = 0; r < m; ++r) identity[r] = r;
+  const bool all_places = m <= kRunsForAllPlaces;
   for (int i = 0; i < m; ++i) {
     std::vector<int> rest = identity;
     rest.erase(rest.begin() + i);
     for (int j = 0; j <= m - 1; ++j) {
-      // j == i: back where it was; j == i - 1: the swap with the run before, which that run's
-      // move one place on makes too.
-      if (j == i || j == i - 1) continue;
-      if (m > kRunsForAllPlaces && j != 0 && j != m - 1) continue;
+      if (j == i) continue;  // back where it was
+      // The swap with the run before, which that run's move one place on makes too (when it
+      // may move there).
+      if (j == i - 1 && (all_places || i == m - 1)) continue;
+      if (!all_places && j != 0 && j != m - 1) continue;
       std::vector<int> order = rest;
       order.insert(order.begin() + j, i);
       build(order, -1);

@@ -20,7 +20,7 @@
 namespace ecorail::fleet {
 
 struct RegimeStart {
-  std::vector<int> departures_s;              // empty when no timetable exists on the grid
+  std::vector<int> departures_s;              // empty when no timetable fits or `stop` ended it
   int grid_s = 0;                             // the grid of the (off-peak) analysis
   std::vector<PeriodicRegime> offpeak, peak;  // the analyses (peak empty without windows)
   double predicted_used_J = 0.0;              // the DP's value (junctions not priced)
