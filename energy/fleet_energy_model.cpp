@@ -76,7 +76,7 @@ std::vector<double> FleetEnergyModel::two_train_values_J(int lo_s, int hi_s, int
   return out;
 }
 
-FleetLowerBound FleetEnergyModel::lower_bound() const {
+FleetLowerBound FleetEnergyModel::lower_bound(const std::function<bool()>&) const {
   return {};
 }
 

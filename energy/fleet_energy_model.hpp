@@ -187,11 +187,17 @@ class FleetEnergyModel {
   // Value of two trains h apart alone, for h = lo_s..hi_s: the larger the better (used energy,
   // or minus the substation energy); the search's two-train approximation.
   virtual std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const;
-  virtual FleetLowerBound lower_bound() const;
+  // `stop` (may be empty; asked from any thread) cuts a costly bound short: the model then
+  // returns the best bound it has by then, valid still and named so (a time limit keeps).
+  virtual FleetLowerBound lower_bound(const std::function<bool()>& stop = {}) const;
   // Headway sequences that maximise a relaxation of the problem (one per multiplier tried; their
   // sums miss the span): starts for a search (fleet/relaxed_start.hpp). None by default; costs
-  // a DP, so the search asks only when it builds that start.
-  virtual std::vector<std::vector<int>> relaxation_maximisers_s() const { return {}; }
+  // a DP, so the search asks only when it builds that start. `stop` as for lower_bound (the
+  // maximisers found by then).
+  virtual std::vector<std::vector<int>> relaxation_maximisers_s(
+      const std::function<bool()>& /*stop*/ = {}) const {
+    return {};
+  }
   // A sequence of the same span that uses more regenerated energy than `headways_s`, found near
   // it by an exact search the model can run on part of its domain (the power-flow model: the
   // window terms' DP, energy/window_refine.hpp); empty when it has none, does not apply or finds

@@ -12,7 +12,8 @@ namespace ecorail::energy {
 
 NetworkBound network_substation_bound(const power::NetworkProfile& profile,
                                       const power::PowerSupply& supply, double traction_efficiency,
-                                      const FleetLimits& problem) {
+                                      const FleetLimits& problem,
+                                      const std::function<bool()>& stop) {
   if (!(traction_efficiency > 0.0 && traction_efficiency <= 1.0))
     throw std::invalid_argument("traction efficiency must be in (0, 1]");
   NetworkBound out;
@@ -48,7 +49,10 @@ NetworkBound network_substation_bound(const power::NetworkProfile& profile,
     if (cap < out.reuse_cap_J) out.reuse_cap_J = cap, out.pair_bound = true;
     // One headway class: the window bound of the same (D, R), far tighter (it values the
     // trains on the line together, not in pairs).
-    const WindowBound window = window_used_regen_bound(dr, problem);
+    WindowBoundOptions o;
+    o.stop = stop;
+    const WindowBound window = window_used_regen_bound(dr, problem, o);
+    if (window.stopped) out.cut_short = window_cut_short(window);
     if (window.applicable && window.bound_used_J + slack_J < out.reuse_cap_J) {
       out.reuse_cap_J = window.bound_used_J + slack_J;
       out.window_bound = true;

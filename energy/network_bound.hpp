@@ -19,6 +19,9 @@
 // and bin for that.
 #pragma once
 
+#include <functional>
+#include <string>
+
 #include "energy/model_options.hpp"
 #include "power/network_profile.hpp"
 #include "power/power_supply.hpp"
@@ -32,10 +35,12 @@ struct NetworkBound {
   double reuse_cap_J = 0.0;   // the most regeneration any timetable can put to use
   bool pair_bound = false;    // the pair bound capped the reuse below the total regeneration
   bool window_bound = false;  // the window bound capped it below that (one headway class)
+  std::string cut_short;      // how `stop` cut the window bound short (empty: it did not)
 };
 
 NetworkBound network_substation_bound(const power::NetworkProfile& profile,
                                       const power::PowerSupply& supply, double traction_efficiency,
-                                      const FleetLimits& limits);
+                                      const FleetLimits& limits,
+                                      const std::function<bool()>& stop = {});
 
 }  // namespace ecorail::energy

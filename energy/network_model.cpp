@@ -126,12 +126,13 @@ std::vector<double> NetworkModel::two_train_values_J(int lo_s, int hi_s, int thr
   return out;
 }
 
-FleetLowerBound NetworkModel::lower_bound() const {
+FleetLowerBound NetworkModel::lower_bound(const std::function<bool()>& stop) const {
+  const NetworkBound nb = network_substation_bound(*profile_, *options().power_supply,
+                                                   options().traction_efficiency, limits(), stop);
   FleetLowerBound b;
   b.name = "network bound";
-  b.substation_J = network_substation_bound(*profile_, *options().power_supply,
-                                            options().traction_efficiency, limits())
-                       .substation_J;
+  if (!nb.cut_short.empty()) b.name += ", " + nb.cut_short;
+  b.substation_J = nb.substation_J;
   return b;
 }
 

@@ -32,7 +32,7 @@ class NetworkModel : public FleetEnergyModel {
                                             const EnergyModelOptions& options) const override;
   std::unique_ptr<FleetBalance> make_balance(int threads = 0) const override;
   std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const override;
-  FleetLowerBound lower_bound() const override;
+  FleetLowerBound lower_bound(const std::function<bool()>& stop = {}) const override;
   std::optional<double> substation_without_reuse_J(
       const std::vector<int>& departures_s) const override;
   SearchPlan search_plan() const override;

@@ -148,7 +148,7 @@ std::vector<double> PowerFlowModel::two_train_values_J(int lo_s, int hi_s, int) 
   return out;
 }
 
-FleetLowerBound PowerFlowModel::lower_bound() const {
+FleetLowerBound PowerFlowModel::lower_bound(const std::function<bool()>& stop) const {
   // No timetable uses more than is regenerated, nor more than is drawn.
   const PairBound pair = used_regen_bound(*profile_, limits());
   const MicroJoules trains = limits().trains;
@@ -157,16 +157,22 @@ FleetLowerBound PowerFlowModel::lower_bound() const {
   b.used_regen_J = std::min({pair.bound_used_J, to_joules(trains * profile_->regen_total()),
                              to_joules(trains * profile_->traction_total())});
   // One supply section and one headway class: the window bound, far tighter where it applies.
-  const WindowBound window = window_used_regen_bound(*profile_, limits());
+  WindowBoundOptions o;
+  o.stop = stop;
+  const WindowBound window = window_used_regen_bound(*profile_, limits(), o);
   if (window.applicable && window.bound_used_J < b.used_regen_J) {
     b.used_regen_J = window.bound_used_J;
     b.name = "window bound";
   }
+  if (window.stopped) b.name += ", " + window_cut_short(window);
   return b;
 }
 
-std::vector<std::vector<int>> PowerFlowModel::relaxation_maximisers_s() const {
-  return window_core_maximisers(*profile_, limits());
+std::vector<std::vector<int>> PowerFlowModel::relaxation_maximisers_s(
+    const std::function<bool()>& stop) const {
+  WindowBoundOptions o;
+  o.stop = stop;
+  return window_core_maximisers(*profile_, limits(), o);
 }
 
 std::vector<int> PowerFlowModel::refined_headways_s(const std::vector<int>& headways_s, int threads,

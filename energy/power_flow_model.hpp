@@ -42,9 +42,10 @@ class PowerFlowModel : public FleetEnergyModel {
   std::unique_ptr<FleetBalance> make_balance(int threads = 0) const override;
   bool per_train_trips() const override { return true; }
   std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const override;
-  FleetLowerBound lower_bound() const override;
+  FleetLowerBound lower_bound(const std::function<bool()>& stop = {}) const override;
   // The window bound's maximisers in the core (energy/window_bound.hpp).
-  std::vector<std::vector<int>> relaxation_maximisers_s() const override;
+  std::vector<std::vector<int>> relaxation_maximisers_s(
+      const std::function<bool()>& stop = {}) const override;
   // The window terms' exact DP near the sequence (energy/window_refine.hpp).
   std::vector<int> refined_headways_s(const std::vector<int>& headways_s, int threads,
                                       double time_limit_s) const override;

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,28 @@ namespace ecorail::energy {
 namespace {
 
 constexpr double kNone = -std::numeric_limits<double>::infinity();
+
+// Thrown where WindowBoundOptions::stop ends the work (never inside a parallel region).
+struct Stopped {};
+
+// The options' stop, asked from any thread (a parallel loop skips its remaining rows once it
+// returned true, then the serial code after the loop throws Stopped).
+class StopCheck {
+ public:
+  explicit StopCheck(const std::function<bool()>& stop) : stop_(stop) {}
+  bool operator()() {
+    if (hit_.load(std::memory_order_relaxed)) return true;
+    if (stop_ && stop_()) hit_.store(true, std::memory_order_relaxed);
+    return hit_.load(std::memory_order_relaxed);
+  }
+  void throw_if_hit() {
+    if ((*this)()) throw Stopped{};
+  }
+
+ private:
+  const std::function<bool()>& stop_;
+  std::atomic<bool> hit_{false};
+};
 
 using window_terms::active_seconds;
 using window_terms::core_min_s;
@@ -215,7 +238,7 @@ void fifth_train_charges(Tables& tb, const PairTables& pt, const FleetLimits& p,
 }
 
 Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const WindowBoundOptions& o,
-                    int threads) {
+                    int threads, StopCheck& stop) {
   Tables tb;
   const int tps = profile.ticks_per_second();
   const int L = active_seconds(profile);
@@ -254,6 +277,7 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
   // 1. Triples with a headway below the core, on the 1 s grid, the fourth train by pairs.
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int A = 0; A < D; ++A) {
+    if (stop()) continue;
     std::vector<double> cum;
     for (int a = cl.lo[A]; a <= cl.hi[A]; ++a)
       for (int b = hmin; b <= hmax; ++b) {
@@ -269,12 +293,14 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
         }
       }
   }
+  stop.throw_if_hit();
   // 2. Core triples, exactly on the fine grid: G3 of the window plus the fourth train's
   // increment from t_{k+3} on.
   const window_terms::ExactTerms exact(profile, qf);
   const long q = qf;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int a = hc; a <= hmax; ++a) {
+    if (stop()) continue;
     std::vector<double> cum;
     for (int b = hc; b <= hmax; ++b) {
       three(gf, b * q, (a + b) * q, hmax * q, cum);
@@ -284,8 +310,10 @@ Tables build_tables(const PowerProfile& profile, const FleetLimits& p, const Win
       }
     }
   }
+  stop.throw_if_hit();
   assign_classes(tb, hc, o.short_band_ends_s);
   fifth_train_charges(tb, pt, p, threads);
+  stop.throw_if_hit();
   // 3. First two windows (train 1 alone over h1, trains 1 and 2 over h2) and the last window
   // (the newest three from t_N on; core pairs on the fine grid, the others on 1 s).
   {
@@ -335,7 +363,8 @@ struct DualRun {
 
 // max over sequences of the window terms + mu (sum h - span); short cells count at the end
 // that mu favours.
-DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads, long& work) {
+DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads, long& work,
+                 StopCheck& stop) {
   const Cells& cl = tb.cells;
   const int D = cl.D, n = p.trains - 1;
   auto hx = [&](int C) { return mu >= 0.0 ? cl.hi[C] : cl.lo[C]; };
@@ -349,6 +378,7 @@ DualRun run_dual(const Tables& tb, const FleetLimits& p, double mu, int threads,
           tb.S[static_cast<std::size_t>(A) * D + B] + mu * (hx(A) + hx(B));
   std::vector<std::vector<std::uint16_t>> back(n + 1);
   for (int j = 3; j <= n; ++j) {
+    stop.throw_if_hit();
     back[j].assign(nx * DD, 0);
     std::vector<std::uint16_t>& bp = back[j];
     const bool charged = j >= 4;  // train j-3 exists
@@ -458,7 +488,15 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
   out.why_not = not_applicable(profile, p);
   if (!out.why_not.empty()) return out;
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  const Tables tb = build_tables(profile, p, o, threads);
+  StopCheck stop(o.stop);
+  Tables tb;
+  try {
+    tb = build_tables(profile, p, o, threads, stop);
+  } catch (const Stopped&) {
+    out.stopped = true;
+    out.why_not = "stopped before its tables were built";
+    return out;
+  }
   out.tables_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.applicable = true;
   out.active_s = tb.active_s;
@@ -468,7 +506,7 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
   // (convex) dual, non-decreasing in mu.
   long work = 0;
   auto eval = [&](double mu) {
-    DualRun r = run_dual(tb, p, mu, threads, work);
+    DualRun r = run_dual(tb, p, mu, threads, work, stop);
     ++out.evaluations;
     if (out.evaluations == 1 || r.value < out.bound_used_J) {
       out.bound_used_J = r.value;
@@ -489,45 +527,55 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
     const double mu = (b.g - a.g + a.e * a.mu - b.e * b.mu) / static_cast<double>(a.e - b.e);
     return a.g + a.e * (mu - a.mu);
   };
-  DualRun at0 = eval(0.0);
-  out.dual_floor_J = at0.excess_s == 0 ? at0.value : kNone;
-  if (at0.excess_s != 0) {
-    // Bracket: move away from 0 against the excess, quadrupling, until the excess changes sign;
-    // first to where the tangent at 0 reaches zero (g is never negative: every term is).
-    const double dir = at0.excess_s > 0 ? -1.0 : 1.0;
-    End inner{0.0, at0.value, at0.excess_s};
-    End outer{
-        dir * std::max(1e3, std::fabs(at0.value) / std::fabs(static_cast<double>(at0.excess_s))),
-        0.0, 0};
-    DualRun r = eval(outer.mu);
-    while ((r.excess_s > 0) == (at0.excess_s > 0) && r.excess_s != 0 &&
-           out.evaluations < o.max_dual_evaluations) {
-      inner = {outer.mu, r.value, r.excess_s};
-      outer.mu *= 4.0;
-      r = eval(outer.mu);
-    }
-    outer.g = r.value, outer.e = r.excess_s;
-    if (r.excess_s == 0) out.dual_floor_J = r.value;
-    while (r.excess_s != 0 && (outer.e > 0) != (at0.excess_s > 0) &&
-           out.evaluations < o.max_dual_evaluations) {
-      out.dual_floor_J = tangent_floor(inner, outer);
-      if (out.bound_used_J - out.dual_floor_J <= o.multiplier_tolerance * out.bound_used_J) break;
-      // Next: where the tangents cross (g is piecewise linear, so this ends), kept off the
-      // bracket's ends by a tenth of its width.
-      const double width = outer.mu - inner.mu;
-      const double cross = (outer.g - inner.g + inner.e * inner.mu - outer.e * outer.mu) /
-                           static_cast<double>(inner.e - outer.e);
-      const double t = std::clamp((cross - inner.mu) / width, 0.1, 0.9);
-      const double mid = inner.mu + t * width;
-      const DualRun m = eval(mid);
-      if (m.excess_s == 0) {
-        out.dual_floor_J = m.value;
-        break;
+  // Every multiplier's value is a bound (weak duality): a stop keeps the best one so far.
+  try {
+    DualRun at0 = eval(0.0);
+    out.dual_floor_J = at0.excess_s == 0 ? at0.value : kNone;
+    if (at0.excess_s != 0) {
+      // Bracket: move away from 0 against the excess, quadrupling, until the excess changes sign;
+      // first to where the tangent at 0 reaches zero (g is never negative: every term is).
+      const double dir = at0.excess_s > 0 ? -1.0 : 1.0;
+      End inner{0.0, at0.value, at0.excess_s};
+      End outer{
+          dir * std::max(1e3, std::fabs(at0.value) / std::fabs(static_cast<double>(at0.excess_s))),
+          0.0, 0};
+      DualRun r = eval(outer.mu);
+      while ((r.excess_s > 0) == (at0.excess_s > 0) && r.excess_s != 0 &&
+             out.evaluations < o.max_dual_evaluations) {
+        inner = {outer.mu, r.value, r.excess_s};
+        outer.mu *= 4.0;
+        r = eval(outer.mu);
       }
-      if ((m.excess_s > 0) == (at0.excess_s > 0))
-        inner = {mid, m.value, m.excess_s};
-      else
-        outer = {mid, m.value, m.excess_s};
+      outer.g = r.value, outer.e = r.excess_s;
+      if (r.excess_s == 0) out.dual_floor_J = r.value;
+      while (r.excess_s != 0 && (outer.e > 0) != (at0.excess_s > 0) &&
+             out.evaluations < o.max_dual_evaluations) {
+        out.dual_floor_J = tangent_floor(inner, outer);
+        if (out.bound_used_J - out.dual_floor_J <= o.multiplier_tolerance * out.bound_used_J) break;
+        // Next: where the tangents cross (g is piecewise linear, so this ends), kept off the
+        // bracket's ends by a tenth of its width.
+        const double width = outer.mu - inner.mu;
+        const double cross = (outer.g - inner.g + inner.e * inner.mu - outer.e * outer.mu) /
+                             static_cast<double>(inner.e - outer.e);
+        const double t = std::clamp((cross - inner.mu) / width, 0.1, 0.9);
+        const double mid = inner.mu + t * width;
+        const DualRun m = eval(mid);
+        if (m.excess_s == 0) {
+          out.dual_floor_J = m.value;
+          break;
+        }
+        if ((m.excess_s > 0) == (at0.excess_s > 0))
+          inner = {mid, m.value, m.excess_s};
+        else
+          outer = {mid, m.value, m.excess_s};
+      }
+    }
+  } catch (const Stopped&) {
+    out.stopped = true;
+    if (out.evaluations == 0) {
+      out.applicable = false;
+      out.why_not = "stopped before its first multiplier";
+      return out;
     }
   }
   // Round-off: every term is a sum of at most a few hundred thousand doubles of at most 1e9 J.
@@ -535,6 +583,13 @@ WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimi
   out.dp_transitions = work;
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+std::string window_cut_short(const WindowBound& w) {
+  const std::string cut = "the window bound cut short by the time limit ";
+  if (w.evaluations == 0) return cut + "(" + w.why_not + ")";
+  return cut + "after " + std::to_string(w.evaluations) + " DP run" +
+         (w.evaluations == 1 ? "" : "s");
 }
 
 std::vector<std::vector<int>> window_core_maximisers(const PowerProfile& profile,
@@ -553,7 +608,9 @@ std::vector<double> window_relaxed_values_J(const PowerProfile& profile, const F
                                             const WindowBoundOptions& o) {
   std::string why = not_applicable(profile, p);
   if (!why.empty()) throw std::invalid_argument("window bound: " + why);
-  const Tables tb = build_tables(profile, p, o, o.threads > 0 ? o.threads : 1);
+  const std::function<bool()> no_stop;
+  StopCheck never(no_stop);
+  const Tables tb = build_tables(profile, p, o, o.threads > 0 ? o.threads : 1, never);
   const Cells& cl = tb.cells;
   const int D = cl.D, n = p.trains - 1;
   std::vector<double> out;

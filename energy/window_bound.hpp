@@ -38,6 +38,7 @@
 // when every headway lies in the core (window_core_maximisers).
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -60,12 +61,18 @@ struct WindowBoundOptions {
   // fraction of it (the crossing of the bracket's tangents shows how much one could).
   double multiplier_tolerance = 1e-5;
   int threads = 0;  // 0: OpenMP's default
+  // Asked (from any thread) while the tables are built and before each DP layer; once it
+  // returns true the bound ends (WindowBound::stopped). Empty: never.
+  std::function<bool()> stop;
   bool IsValid(std::string* error) const;
 };
 
 struct WindowBound {
-  bool applicable = false;    // one class, one supply section, at least three trains
-  std::string why_not;        // when not applicable
+  bool applicable = false;  // one class, one supply section, at least three trains
+  std::string why_not;      // when not applicable
+  // `stop` ended it: bound_used_J is then the best multiplier's of the DP runs that finished
+  // (still a bound: every multiplier gives one), and the bound is not applicable when none did.
+  bool stopped = false;
   double bound_used_J = 0.0;  // valid upper bound on the used regenerated energy
   double mu_J_per_s = 0.0;    // multiplier of the best bound
   double active_s = 0.0;      // L: from a departure to the last bin with power
@@ -86,6 +93,10 @@ struct WindowBound {
 
 WindowBound window_used_regen_bound(const PowerProfile& profile, const FleetLimits& problem,
                                     const WindowBoundOptions& options = {});
+
+// What a stopped bound (WindowBound::stopped) did, for a bound's name: "the window bound cut
+// short by the time limit after 3 DP runs".
+std::string window_cut_short(const WindowBound& bound);
 
 // The maximisers of the same relaxation with every headway in the core (at most four trains on
 // the line, where the window terms are exact): starts for a search (fleet/relaxed_start.hpp).

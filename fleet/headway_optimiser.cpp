@@ -27,6 +27,9 @@ using energy::SearchPlan;
 using energy::to_joules;
 using Clock = SearchClock;
 
+// With a time limit, the share of it the bound may take (docs/fleet.md, "Time limits").
+constexpr double kBoundShareOfTimeLimit = 0.4;
+
 HeadwayDomain domain_of(const FleetProblem& p) {
   return {p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
 }
@@ -225,8 +228,15 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
                                 " model has neither a headway decomposition nor a balance");
 
   // The bound holds for every timetable of the problem, whatever the search finds: it is taken
-  // first, so that the time after the search is only the result's own evaluation.
-  const energy::FleetLowerBound bound = model.lower_bound();
+  // first, so that the time after the search is only the result's own evaluation. With a time
+  // limit it may take 40 % of it (then the best bound it has, named so), the relaxation's
+  // maximisers (a start) up to half of it all: the search keeps the rest.
+  const auto share_past = [&](double share) {
+    return [&options, t0, share] {
+      return options.time_limit_s > 0.0 && past(t0, share * options.time_limit_s);
+    };
+  };
+  const energy::FleetLowerBound bound = model.lower_bound(share_past(kBoundShareOfTimeLimit));
   const double bound_used = bound.used_regen_J;
 
   // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp),
@@ -242,10 +252,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   if (options.regime_start && plan.price_starts && p.windowed()) {
     // With a time limit the start may take half of it; one that is not built by then is
     // dropped (the other starts remain), so that a short limit is kept.
-    const auto regime_stop = [&] {
-      return options.time_limit_s > 0.0 && past(t0, 0.5 * options.time_limit_s);
-    };
-    RegimeStart r = build_regime_start(*coarse, p, threads, &model, regime_stop);
+    RegimeStart r = build_regime_start(*coarse, p, threads, &model, share_past(0.5));
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
@@ -264,7 +271,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     // Every join of the maximisers near the span, priced on the annealing's grid side by side:
     // the best is the start (ties: the first).
     const std::vector<std::vector<int>> joins =
-        relaxed_start_candidates(model.relaxation_maximisers_s(), p);
+        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.5)), p);
     std::vector<double> used(joins.size(), -1.0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (long i = 0; i < static_cast<long>(joins.size()); ++i) {

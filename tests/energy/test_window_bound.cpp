@@ -175,6 +175,62 @@ TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
   }
 }
 
+// A stop (a time limit) may end the bound anywhere: while its tables are built (then it does not
+// apply) or between its DP layers (then it keeps the best multiplier of the runs that finished).
+// Whatever it keeps is still at least the brute-force optimum and never below the full bound.
+TEST(WindowBound, AStopAnywhereKeepsAValidBound) {
+  const FleetProblem p = testing::small_fleet(5, 90, 140, 500);
+  const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
+  auto balance = fleet.make_balance();
+  double best = 0.0;
+  for_each_timetable(p, [&](const std::vector<int>& h) {
+    balance->place_all(departures_from_headways(h));
+    best = std::max(best, to_joules(balance->used()));
+  });
+  WindowBoundOptions wo;
+  wo.threads = 1;  // the stop's calls then come in one order
+  long calls = 0;
+  wo.stop = [&calls] {
+    ++calls;
+    return false;
+  };
+  const WindowBound full = window_used_regen_bound(fleet.profile(), limits_of(p), wo);
+  ASSERT_TRUE(full.applicable) << full.why_not;
+  EXPECT_FALSE(full.stopped);
+  ASSERT_GE(full.evaluations, 2);
+  const long total = calls;
+  int before_tables = 0, between_runs = 0;
+  for (long at = 1; at <= total + 1; ++at) {
+    long n = 0;
+    WindowBoundOptions cut = wo;
+    cut.stop = [&n, at] { return ++n >= at; };
+    const WindowBound b = window_used_regen_bound(fleet.profile(), limits_of(p), cut);
+    if (at > total) {  // never asked that often: the full bound, bit for bit
+      EXPECT_FALSE(b.stopped);
+      EXPECT_EQ(b.bound_used_J, full.bound_used_J);
+      continue;
+    }
+    ASSERT_TRUE(b.stopped) << at;
+    if (!b.applicable) {
+      ++before_tables;
+      EXPECT_EQ(b.evaluations, 0);
+      continue;
+    }
+    ++between_runs;
+    EXPECT_GE(b.evaluations, 1);
+    EXPECT_LT(b.evaluations, full.evaluations + 1);
+    EXPECT_GE(b.bound_used_J, best * (1 - 1e-12)) << at;
+    EXPECT_GE(b.bound_used_J, full.bound_used_J) << at;
+    EXPECT_NE(energy::window_cut_short(b).find("after"), std::string::npos);
+  }
+  EXPECT_GT(before_tables, 0);
+  EXPECT_GT(between_runs, 0);
+  // The model's certificate says when the limit cut its bound, and stays a bound.
+  const energy::FleetLowerBound lb = fleet.model().lower_bound([] { return true; });
+  EXPECT_NE(lb.name.find("cut short by the time limit"), std::string::npos) << lb.name;
+  EXPECT_GE(lb.used_regen_J, best * (1 - 1e-12));
+}
+
 // The power-flow model certifies with the window bound, and the optimiser's gap covers its true
 // shortfall from the brute-force optimum.
 TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
