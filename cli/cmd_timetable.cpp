@@ -153,11 +153,14 @@ void run_optimise(const TimetableArgs& a) {
   fleet::TimetableStudy s = make_study(a);
   if (!a.quiet && isatty(STDERR_FILENO)) {
     o.progress = [](const fleet::OptimiserProgress& p) {
-      std::fprintf(stderr, "\r  %-26s best used %.1f kJ%s, %.1f s   ", p.stage.c_str(),
-                   p.best_used_J / 1e3,
-                   std::isfinite(p.bound_used_J)
-                       ? (", bound " + std::to_string(p.bound_used_J / 1e3) + " kJ").c_str()
-                       : "",
+      // Before the first start is priced there is no best yet; "\033[K" clears what a longer
+      // line before left.
+      char best[64] = "no timetable yet", bound[64] = "";
+      if (p.best_used_J > 0.0)
+        std::snprintf(best, sizeof best, "best used %.1f kJ", p.best_used_J / 1e3);
+      if (std::isfinite(p.bound_used_J))
+        std::snprintf(bound, sizeof bound, ", bound %.1f kJ", p.bound_used_J / 1e3);
+      std::fprintf(stderr, "\r  %-26s %s%s, %.1f s\033[K", p.stage.c_str(), best, bound,
                    p.elapsed_s);
       std::fflush(stderr);
     };

@@ -28,7 +28,7 @@ using energy::to_joules;
 using Clock = SearchClock;
 
 // With a time limit, the share of it the bound may take (docs/fleet.md, "Time limits").
-constexpr double kBoundShareOfTimeLimit = 0.4;
+constexpr double kBoundShareOfTimeLimit = 0.5;
 
 HeadwayDomain domain_of(const FleetProblem& p) {
   return {p.trains - 1, p.headway_min_s, p.headway_max_s, p.span_s};
@@ -236,7 +236,18 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       return options.time_limit_s > 0.0 && past(t0, share * options.time_limit_s);
     };
   };
-  const energy::FleetLowerBound bound = model.lower_bound(share_past(kBoundShareOfTimeLimit));
+  // The bound takes seconds on a long day: the progress line ticks meanwhile (from the calling
+  // thread only, which the bound's parallel loops ask too).
+  report("bound", 0.0, NAN);
+  double last_tick_s = 0.0;
+  const auto bound_past = share_past(kBoundShareOfTimeLimit);
+  const energy::FleetLowerBound bound = model.lower_bound([&] {
+    if (options.progress && omp_get_thread_num() == 0 && seconds_since(t0) >= last_tick_s + 0.5) {
+      last_tick_s = seconds_since(t0);
+      report("bound", 0.0, NAN);
+    }
+    return bound_past();
+  });
   const double bound_used = bound.used_regen_J;
 
   // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp),
@@ -271,7 +282,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     // Every join of the maximisers near the span, priced on the annealing's grid side by side:
     // the best is the start (ties: the first).
     const std::vector<std::vector<int>> joins =
-        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.5)), p);
+        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.6)), p);
     std::vector<double> used(joins.size(), -1.0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (long i = 0; i < static_cast<long>(joins.size()); ++i) {
