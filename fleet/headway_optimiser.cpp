@@ -250,9 +250,10 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   });
   const double bound_used = bound.used_regen_J;
 
-  // Starts: with peak windows the DP over the trip's periodic regimes (regime_start.hpp),
-  // without them the join of the bound relaxation's maximisers (relaxed_start.hpp), the
-  // exact optimum of the two-train approximation (with peak windows: the windowed DP's, the same
+  // Starts: the join of the bound relaxation's maximisers (relaxed_start.hpp; one headway class,
+  // where the relaxation's window terms are exact: at most four trains on the line), else the
+  // DP over the trip's periodic regimes (regime_start.hpp; with peak windows always), the exact
+  // optimum of the two-train approximation (with peak windows: the windowed DP's, the same
   // values for both classes), and the uniform timetable.
   const int lo = p.any_headway_min_s(), hi = p.any_headway_max_s();
   std::vector<std::vector<int>> starts;
@@ -260,10 +261,33 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // A start built from the problem's structure is annealed from a lower temperature (that of
   // the anytime rounds' re-annealing): from the full one its structure would be lost.
   std::vector<double> start_temperature;
-  if (options.regime_start && plan.price_starts && p.windowed()) {
-    // With a time limit the start may take half of it; one that is not built by then is
-    // dropped (the other starts remain), so that a short limit is kept.
-    RegimeStart r = build_regime_start(*coarse, p, threads, &model, share_past(0.5));
+  std::vector<int> relaxed_departures;
+  if (options.relaxed_start && !p.windowed()) {
+    // Every join of the maximisers near the span, priced on the annealing's grid side by side:
+    // the best is the start (ties: the first).
+    const std::vector<std::vector<int>> joins =
+        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.6)), p);
+    std::vector<double> used(joins.size(), -1.0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (long i = 0; i < static_cast<long>(joins.size()); ++i) {
+      const std::vector<int> d = departures_from_headways(joins[i]);
+      if (departures_problem(p, d).empty()) used[i] = coarse->evaluate(d).total.used_regen_J;
+    }
+    const auto best_join = std::max_element(used.begin(), used.end());
+    if (best_join != used.end() && *best_join >= 0.0)
+      relaxed_departures = departures_from_headways(joins[best_join - used.begin()]);
+  }
+  // Without a relaxed start (more trains share the line than the relaxation values exactly) a
+  // steady regime decides the usage, with peak windows or without: the regime start. With a
+  // time limit it may take half of what the bound left; one that is not built by then is
+  // dropped (the other starts remain), so that a short limit is kept.
+  if (options.regime_start && plan.price_starts && (p.windowed() || relaxed_departures.empty())) {
+    const double started_s = seconds_since(t0);
+    const auto regime_stop = [&options, t0, started_s] {
+      return options.time_limit_s > 0.0 &&
+             past(t0, started_s + 0.5 * std::max(0.0, options.time_limit_s - started_s));
+    };
+    RegimeStart r = build_regime_start(*coarse, p, threads, &model, regime_stop);
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
@@ -277,28 +301,11 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     }
   }
   report("periodic regimes", 0.0, bound_used);
-  bool relaxed = false;  // a start from the relaxation was added
-  if (options.relaxed_start && !p.windowed()) {
-    // Every join of the maximisers near the span, priced on the annealing's grid side by side:
-    // the best is the start (ties: the first).
-    const std::vector<std::vector<int>> joins =
-        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.6)), p);
-    std::vector<double> used(joins.size(), -1.0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (long i = 0; i < static_cast<long>(joins.size()); ++i) {
-      const std::vector<int> d = departures_from_headways(joins[i]);
-      if (departures_problem(p, d).empty()) used[i] = coarse->evaluate(d).total.used_regen_J;
-    }
-    std::vector<int> departures;
-    const auto best_join = std::max_element(used.begin(), used.end());
-    if (best_join != used.end() && *best_join >= 0.0)
-      departures = departures_from_headways(joins[best_join - used.begin()]);
-    if (!departures.empty()) {
-      starts.push_back(std::move(departures));
-      start_temperature.push_back(options.reanneal_temperature);
-      method_starts += "the bound's relaxation, ";
-      relaxed = true;
-    }
+  const bool relaxed = !relaxed_departures.empty();  // a start from the relaxation was added
+  if (relaxed) {
+    starts.push_back(std::move(relaxed_departures));
+    start_temperature.push_back(options.reanneal_temperature);
+    method_starts += "the bound's relaxation, ";
   }
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "fleet/headway_optimiser.hpp"
 #include "fleet/periodic_regimes.hpp"
 #include "fleet/regime_start.hpp"
 #include "fleet_fixture.hpp"
@@ -139,6 +140,38 @@ TEST(RegimeStart, StoppedStartIsDropped) {
   const RegimeStart cut =
       regime_start_from(p, 1, whole.offpeak, whole.peak, 16, [] { return true; });
   EXPECT_TRUE(cut.departures_s.empty());
+}
+
+// One headway class: where the bound's relaxation gives no start (the core, from 120 s on the
+// 480 s trip, cannot hold the span: more than four trains share the line) the search starts from
+// the periodic regimes too, and its result uses at least what that start uses; where the
+// relaxation gives one (every headway may lie in the core), it is the structured start.
+TEST(RegimeStart, OneClassGetsItWhereTheRelaxationGivesNoStart) {
+  EnergyModelOptions o;
+  o.time_step_s = 1.0;
+  HeadwayOptimiserOptions opt;
+  opt.moves_per_run = 4000;
+  opt.threads = 2;
+  {
+    const FleetProblem dense = testing::small_fleet(16, 40, 200, 15 * 75);
+    const TestFleet fleet(testing::small_pattern().trip, dense, o);
+    const HeadwayOptimiserResult r = optimise_headways(fleet, opt);
+    EXPECT_NE(r.summary.method.find("periodic regimes"), std::string::npos) << r.summary.method;
+    EXPECT_EQ(r.summary.method.find("the bound's relaxation"), std::string::npos);
+    const auto coarse = fleet.model().on_grid(opt.anneal_step_s);
+    const RegimeStart start = build_regime_start(*coarse, dense, 2, &fleet.model());
+    ASSERT_FALSE(start.departures_s.empty());
+    EXPECT_GE(r.summary.used_regen_J, start.arranged_used_J * (1 - 1e-12));
+    EXPECT_EQ(departures_problem(dense, departures_from_headways(r.headways_s)), "");
+  }
+  {
+    const FleetProblem sparse = testing::small_fleet(8, 100, 160, 7 * 150);
+    const TestFleet fleet(testing::small_pattern().trip, sparse, o);
+    const HeadwayOptimiserResult r = optimise_headways(fleet, opt);
+    EXPECT_NE(r.summary.method.find("the bound's relaxation"), std::string::npos)
+        << r.summary.method;
+    EXPECT_EQ(r.summary.method.find("periodic regimes"), std::string::npos);
+  }
 }
 
 }  // namespace
