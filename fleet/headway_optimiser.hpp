@@ -62,8 +62,7 @@ struct HeadwayOptimiserOptions {
   // with a time limit as many as fit (a round the limit cuts short is dropped), else `rounds`.
   int rounds = 0;
   double reanneal_temperature = 0.1;
-  // A start from the trip's periodic regimes (regime_start.hpp): with peak windows, and with one
-  // class where the bound's relaxation gives no start.
+  // A start from the trip's periodic regimes (regime_start.hpp), with peak windows or without.
   bool regime_start = true;
   // Without peak windows, a start joined from the maximisers of the model's bound relaxation
   // (relaxed_start.hpp), when its bound has them.
