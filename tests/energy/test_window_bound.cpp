@@ -41,6 +41,17 @@ void for_each_timetable(const FleetProblem& p,
   rec(0, p.span_s);
 }
 
+// The most any timetable of the problem uses, by enumeration.
+double brute_force_best_used_J(const TestFleet& fleet, const FleetProblem& p) {
+  auto balance = fleet.make_balance();
+  double best = 0.0;
+  for_each_timetable(p, [&](const std::vector<int>& h) {
+    balance->place_all(departures_from_headways(h));
+    best = std::max(best, to_joules(balance->used()));
+  });
+  return best;
+}
+
 struct Case {
   int trains, hmin, hmax, span;
 };
@@ -181,12 +192,7 @@ TEST(WindowBound, TheMultiplierSearchEndsAtTheDualsMinimum) {
 TEST(WindowBound, AStopAnywhereKeepsAValidBound) {
   const FleetProblem p = testing::small_fleet(5, 90, 140, 500);
   const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
-  auto balance = fleet.make_balance();
-  double best = 0.0;
-  for_each_timetable(p, [&](const std::vector<int>& h) {
-    balance->place_all(departures_from_headways(h));
-    best = std::max(best, to_joules(balance->used()));
-  });
+  const double best = brute_force_best_used_J(fleet, p);
   WindowBoundOptions wo;
   wo.threads = 1;  // the stop's calls then come in one order
   long calls = 0;
@@ -236,12 +242,7 @@ TEST(WindowBound, AStopAnywhereKeepsAValidBound) {
 TEST(WindowBound, ThePowerFlowModelsCertificateCoversTheTrueShortfall) {
   const FleetProblem p = testing::small_fleet(5, 90, 140, 500);
   const TestFleet fleet(testing::small_pattern().trip, p, testing::tenth_of_a_second());
-  auto balance = fleet.make_balance();
-  double best = 0.0;
-  for_each_timetable(p, [&](const std::vector<int>& h) {
-    balance->place_all(departures_from_headways(h));
-    best = std::max(best, to_joules(balance->used()));
-  });
+  const double best = brute_force_best_used_J(fleet, p);
   const energy::FleetLowerBound lb = fleet.model().lower_bound();
   EXPECT_EQ(lb.name, "window bound");
   EXPECT_GE(lb.used_regen_J, best * (1 - 1e-12));
