@@ -190,6 +190,10 @@ class FleetEnergyModel {
   // `stop` (may be empty; asked from any thread) cuts a costly bound short: the model then
   // returns the best bound it has by then, valid still and named so (a time limit keeps).
   virtual FleetLowerBound lower_bound(const std::function<bool()>& stop = {}) const;
+  // A cheaper model of the same trip and fleet whose good timetables are near this one's: the
+  // search builds its structured starts on it when it does not price starts on this model
+  // (SearchPlan::price_starts false). None by default; the network model: the power-flow model.
+  virtual std::unique_ptr<FleetEnergyModel> start_proxy() const { return nullptr; }
   // Headway sequences that maximise a relaxation of the problem (one per multiplier tried; their
   // sums miss the span): starts for a search (fleet/relaxed_start.hpp). None by default; costs
   // a DP, so the search asks only when it builds that start. `stop` as for lower_bound (the

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "energy/network_bound.hpp"
+#include "energy/power_flow_model.hpp"
 #include "power/network_balance.hpp"
 
 namespace ecorail::energy {
@@ -139,6 +140,13 @@ FleetLowerBound NetworkModel::lower_bound(const std::function<bool()>& stop) con
 std::optional<double> NetworkModel::substation_without_reuse_J(
     const std::vector<int>& departures_s) const {
   return power::evaluate_network(network_setup(), departures_s, false).substation_J;
+}
+
+std::unique_ptr<FleetEnergyModel> NetworkModel::start_proxy() const {
+  EnergyModelOptions o;
+  o.model = "power-flow";
+  o.time_step_s = options().time_step_s;
+  return std::make_unique<PowerFlowModel>(trip(), limits(), o);
 }
 
 SearchPlan NetworkModel::search_plan() const {

@@ -36,6 +36,10 @@ class NetworkModel : public FleetEnergyModel {
   std::optional<double> substation_without_reuse_J(
       const std::vector<int>& departures_s) const override;
   SearchPlan search_plan() const override;
+  // The power-flow model of the same trip on the same grid: a load flow costs about a thousand
+  // times its balance, too much for the periodic-regime analysis, and on question 2.2's day its
+  // optimum's timetable beats the network search's own (docs/power_network.md).
+  std::unique_ptr<FleetEnergyModel> start_proxy() const override;
   std::unique_ptr<TripPricer> make_trip_pricer(const std::vector<int>& departures_s,
                                                double screen_step_s, int threads) const override;
 

@@ -261,17 +261,25 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // A start built from the problem's structure is annealed from a lower temperature (that of
   // the anytime rounds' re-annealing): from the full one its structure would be lost.
   std::vector<double> start_temperature;
+  // A model whose starts are not priced (network: a load flow costs about a thousand times a
+  // balance) builds its structured starts on its proxy (network: power-flow), on whose
+  // annealing grid they are priced.
+  std::unique_ptr<FleetEnergyModel> proxy, proxy_coarse;
+  if (!plan.price_starts && (proxy = model.start_proxy()))
+    proxy_coarse = proxy->on_grid(options.anneal_step_s);
+  const FleetEnergyModel& start_model = proxy ? *proxy : model;
+  const FleetEnergyModel& start_coarse = proxy ? *proxy_coarse : *coarse;
   std::vector<int> relaxed_departures;
   if (options.relaxed_start && !p.windowed()) {
     // Every join of the maximisers near the span, priced on the annealing's grid side by side:
     // the best is the start (ties: the first).
     const std::vector<std::vector<int>> joins =
-        relaxed_start_candidates(model.relaxation_maximisers_s(share_past(0.6)), p);
+        relaxed_start_candidates(start_model.relaxation_maximisers_s(share_past(0.6)), p);
     std::vector<double> used(joins.size(), -1.0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (long i = 0; i < static_cast<long>(joins.size()); ++i) {
       const std::vector<int> d = departures_from_headways(joins[i]);
-      if (departures_problem(p, d).empty()) used[i] = coarse->evaluate(d).total.used_regen_J;
+      if (departures_problem(p, d).empty()) used[i] = start_coarse.evaluate(d).total.used_regen_J;
     }
     const auto best_join = std::max_element(used.begin(), used.end());
     if (best_join != used.end() && *best_join >= 0.0)
@@ -283,23 +291,23 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // of what the bound and the relaxation left, a quarter beside the relaxed start (on 2.1 it
   // gives nothing, and a short limit's search needs the time); one that is not built by then
   // is dropped (the other starts remain), so that a short limit is kept.
-  if (options.regime_start && plan.price_starts) {
+  if (options.regime_start && (plan.price_starts || proxy)) {
     const double started_s = seconds_since(t0);
     const double share = relaxed_departures.empty() ? 0.5 : 0.25;
     const auto regime_stop = [&options, t0, started_s, share] {
       return options.time_limit_s > 0.0 &&
              past(t0, started_s + share * std::max(0.0, options.time_limit_s - started_s));
     };
-    RegimeStart r = build_regime_start(*coarse, p, threads, &model, regime_stop);
+    RegimeStart r = build_regime_start(start_coarse, p, threads, &start_model, regime_stop);
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
       char buf[256];
       std::snprintf(buf, sizeof buf,
                     "periodic regimes on a %d s grid (their runs reordered by %ld evaluations "
-                    "of the model: used %.1f -> %.1f kJ), ",
-                    r.grid_s, r.arrangement_evaluations, r.dp_used_J * 1e-3,
-                    r.arranged_used_J * 1e-3);
+                    "of the %s model: used %.1f -> %.1f kJ), ",
+                    r.grid_s, r.arrangement_evaluations, std::string(start_model.name()).c_str(),
+                    r.dp_used_J * 1e-3, r.arranged_used_J * 1e-3);
       method_starts = buf;
     }
   }

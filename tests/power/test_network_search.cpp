@@ -20,6 +20,7 @@
 #include "energy/window_bound.hpp"
 #include "fleet/headway_optimiser.hpp"
 #include "fleet/pattern_search.hpp"
+#include "fleet/regime_start.hpp"
 #include "power/network_balance.hpp"
 #include "tests/fleet/fleet_fixture.hpp"
 
@@ -186,6 +187,17 @@ TEST(NetworkOptimiser, WindowedDayKeepsTheClassesAndEvaluatesConsistently) {
   // Never worse than the uniform timetable it starts from, and above the bound.
   const FleetEvaluation uniform = models.evaluate(departures_from_headways(uniform_headways(p)));
   EXPECT_LE(r.summary.substation_J, uniform.total.substation_J() + 1e-6);
+  // It starts from the periodic regimes too, built on the power-flow model (the network's start
+  // proxy), so it is never worse than that start evaluated on the network.
+  EXPECT_NE(r.summary.method.find("periodic regimes"), std::string::npos) << r.summary.method;
+  EXPECT_NE(r.summary.method.find("of the power-flow model"), std::string::npos);
+  const std::unique_ptr<energy::FleetEnergyModel> proxy = models.model().start_proxy();
+  ASSERT_NE(proxy, nullptr);
+  const RegimeStart start =
+      build_regime_start(*proxy->on_grid(cheap_search().anneal_step_s), p, 2, proxy.get());
+  ASSERT_FALSE(start.departures_s.empty());
+  EXPECT_LE(r.summary.substation_J,
+            models.evaluate(start.departures_s).total.substation_J() + 1e-6);
   ASSERT_TRUE(std::isfinite(r.summary.bound_substation_J));
   EXPECT_LE(r.summary.bound_substation_J, r.summary.substation_J + r.summary.curtailed_traction_J);
   EXPECT_GE(r.summary.gap_fraction, 0.0);
