@@ -9,7 +9,10 @@
 # ECORAIL defaults to build/ecorail. CASE is any of: 2.1 (defaults, seed 1), 2.1-60 (the same
 # with --time-limit 60), 2.2-300, 2.2-600 (the 240-train peak day with --time-limit 300 or 600;
 # the longer run continues the shorter one's rounds, so it is never worse when both finish the
-# first round). Default: 2.1 2.2-300. THREADS sets --threads (default: OpenMP's).
+# first round), 120-60, 200-60 (120 or 200 trains, one headway class, --time-limit 60: the
+# periodic-regime start with one class), net-60 (the network model's reference day with the
+# example supply, --time-limit 60), net2.2-120 (its 2.2 day, --time-limit 120). Default: 2.1
+# 2.2-300. THREADS sets --threads (default: OpenMP's).
 set -euo pipefail
 
 bin=${1:-build/ecorail}
@@ -22,6 +25,7 @@ out_dir=$(mktemp -d)
 trap 'rm -rf "$out_dir"' EXIT
 day=(--trains 240 --peak 7200:12600 --peak 43200:50400 --peak-headway 120:150
   --offpeak-headway 300:660)
+net=(--model network --power-supply data/contest/power_supply.toml)
 
 args_of() {
   case "$1" in
@@ -29,7 +33,15 @@ args_of() {
     2.1-60) echo "--model power-flow --seed 1 --time-limit 60" ;;
     2.2-300) echo "${day[*]} --seed 1 --time-limit 300" ;;
     2.2-600) echo "${day[*]} --seed 1 --time-limit 600" ;;
-    *) echo "unknown case '$1' (2.1, 2.1-60, 2.2-300, 2.2-600)" >&2; exit 2 ;;
+    120-60) echo "--trains 120 --seed 1 --time-limit 60" ;;
+    200-60) echo "--trains 200 --seed 1 --time-limit 60" ;;
+    net-60) echo "${net[*]} --seed 1 --time-limit 60" ;;
+    net2.2-120) echo "${net[*]} ${day[*]} --seed 1 --time-limit 120" ;;
+    *)
+      echo "unknown case '$1' (2.1, 2.1-60, 2.2-300, 2.2-600, 120-60, 200-60, net-60," \
+        "net2.2-120)" >&2
+      exit 2
+      ;;
   esac
 }
 
