@@ -27,7 +27,7 @@ using energy::SearchPlan;
 using energy::to_joules;
 using Clock = SearchClock;
 
-// With a time limit, the share of it the bound may take (docs/fleet.md, "Time limits").
+// With a time limit, the share of it the bound may take (docs/fleet.md, `--time-limit S`).
 constexpr double kBoundShareOfTimeLimit = 0.5;
 
 HeadwayDomain domain_of(const FleetProblem& p) {
@@ -229,8 +229,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
 
   // The bound holds for every timetable of the problem, whatever the search finds: it is taken
   // first, so that the time after the search is only the result's own evaluation. With a time
-  // limit it may take 40 % of it (then the best bound it has, named so), the relaxation's
-  // maximisers (a start) up to half of it all: the search keeps the rest.
+  // limit it may take half of it (then the best bound it has, named so), the relaxation's
+  // maximisers (a start) up to 0.6 of it all: the search keeps the rest.
   const auto share_past = [&](double share) {
     return [&options, t0, share] {
       return options.time_limit_s > 0.0 && past(t0, share * options.time_limit_s);
@@ -316,7 +316,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   if (relaxed) {
     starts.push_back(std::move(relaxed_departures));
     start_temperature.push_back(options.reanneal_temperature);
-    method_starts += "the bound's relaxation, ";
+    method_starts += proxy ? "the " + std::string(start_model.name()) + " model's relaxation, "
+                           : std::string("the bound's relaxation, ");
   }
   const std::vector<double> pair =
       (plan.two_train_values_on_search_grid ? *coarse : model).two_train_values_J(lo, hi, threads);
