@@ -236,18 +236,22 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       return options.time_limit_s > 0.0 && past(t0, share * options.time_limit_s);
     };
   };
-  // The bound takes seconds on a long day: the progress line ticks meanwhile (from the calling
-  // thread only, which the bound's parallel loops ask too).
-  report("bound", 0.0, NAN);
+  // The bound and the regime start take seconds on a long day: the stop they ask also ticks the
+  // progress line, twice a second, from the calling thread only (their parallel loops ask it
+  // from the others too).
   double last_tick_s = 0.0;
-  const auto bound_past = share_past(kBoundShareOfTimeLimit);
-  const energy::FleetLowerBound bound = model.lower_bound([&] {
-    if (options.progress && omp_get_thread_num() == 0 && seconds_since(t0) >= last_tick_s + 0.5) {
-      last_tick_s = seconds_since(t0);
-      report("bound", 0.0, NAN);
-    }
-    return bound_past();
-  });
+  const auto ticking = [&](const std::string& stage, double bound_J, std::function<bool()> stop) {
+    return [&, stage, bound_J, stop = std::move(stop)] {
+      if (options.progress && omp_get_thread_num() == 0 && seconds_since(t0) >= last_tick_s + 0.5) {
+        last_tick_s = seconds_since(t0);
+        report(stage, 0.0, bound_J);
+      }
+      return stop();
+    };
+  };
+  report("bound", 0.0, NAN);
+  const energy::FleetLowerBound bound =
+      model.lower_bound(ticking("bound", NAN, share_past(kBoundShareOfTimeLimit)));
   const double bound_used = bound.used_regen_J;
 
   // Starts: the DP over the trip's periodic regimes (regime_start.hpp), the join of the bound
@@ -298,7 +302,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       return options.time_limit_s > 0.0 &&
              past(t0, started_s + share * std::max(0.0, options.time_limit_s - started_s));
     };
-    RegimeStart r = build_regime_start(start_coarse, p, threads, &start_model, regime_stop);
+    RegimeStart r = build_regime_start(start_coarse, p, threads, &start_model,
+                                       ticking("periodic regimes", bound_used, regime_stop));
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
