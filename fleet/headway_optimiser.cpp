@@ -230,10 +230,12 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // The bound holds for every timetable of the problem, whatever the search finds: it is taken
   // first, so that the time after the search is only the result's own evaluation. With a time
   // limit it may take half of it (then the best bound it has, named so), the relaxation's
-  // maximisers (a start) up to 0.6 of it all: the search keeps the rest.
-  const auto share_past = [&](double share) {
-    return [&options, t0, share] {
-      return options.time_limit_s > 0.0 && past(t0, share * options.time_limit_s);
+  // maximisers (a start) up to 0.6 of it all: the search keeps the rest. share_past(share,
+  // from_s): with a time limit, past from_s plus `share` of what the limit leaves after it.
+  const auto share_past = [&](double share, double from_s = 0.0) {
+    return [&options, t0, share, from_s] {
+      return options.time_limit_s > 0.0 &&
+             past(t0, from_s + share * std::max(0.0, options.time_limit_s - from_s));
     };
   };
   // The bound and the regime start take seconds on a long day: the stop they ask also ticks the
@@ -269,7 +271,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // balance) builds its structured starts on its proxy (network: power-flow), on whose
   // annealing grid they are priced.
   std::unique_ptr<FleetEnergyModel> proxy, proxy_coarse;
-  if (!plan.price_starts && (proxy = model.start_proxy()))
+  const bool structured_starts = options.regime_start || (options.relaxed_start && !p.windowed());
+  if (structured_starts && !plan.price_starts && (proxy = model.start_proxy()))
     proxy_coarse = proxy->on_grid(options.anneal_step_s);
   const FleetEnergyModel& start_model = proxy ? *proxy : model;
   const FleetEnergyModel& start_coarse = proxy ? *proxy_coarse : *coarse;
@@ -296,14 +299,10 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // gives nothing, and a short limit's search needs the time); one that is not built by then
   // is dropped (the other starts remain), so that a short limit is kept.
   if (options.regime_start && (plan.price_starts || proxy)) {
-    const double started_s = seconds_since(t0);
     const double share = relaxed_departures.empty() ? 0.5 : 0.25;
-    const auto regime_stop = [&options, t0, started_s, share] {
-      return options.time_limit_s > 0.0 &&
-             past(t0, started_s + share * std::max(0.0, options.time_limit_s - started_s));
-    };
-    RegimeStart r = build_regime_start(start_coarse, p, threads, &start_model,
-                                       ticking("periodic regimes", bound_used, regime_stop));
+    RegimeStart r = build_regime_start(
+        start_coarse, p, threads, &start_model,
+        ticking("periodic regimes", bound_used, share_past(share, seconds_since(t0))));
     if (!r.departures_s.empty() && departures_problem(p, r.departures_s).empty()) {
       starts.push_back(std::move(r.departures_s));
       start_temperature.push_back(options.reanneal_temperature);
