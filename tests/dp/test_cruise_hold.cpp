@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "data/train_io.hpp"
@@ -62,6 +64,48 @@ physics::ControlProgram saw_tooth(const LevelLine& line, double lo_kmh, double h
   return program;
 }
 
+// hold_cruising leaves the program exactly as it is.
+void expect_left_alone(const physics::ControlProgram& program,
+                       const physics::SimulationResult& run) {
+  const physics::ControlProgram kept = dp::hold_cruising(program, run);
+  ASSERT_EQ(kept.size(), program.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    EXPECT_EQ(kept[k].from_m, program[k].from_m);
+    EXPECT_EQ(kept[k].control, program[k].control);
+  }
+}
+
+// A program driven 0.5 m at a time from rest under `rule`, which is given the position, the
+// speed (km/h) and the control in force and returns the next step's control, or nothing to
+// stop there; each change of control is an entry. `at_m` is where it stopped.
+struct Driven {
+  physics::ControlProgram program;
+  double at_m = 0.0;
+};
+Driven drive(const physics::Motion& motion, double end_m,
+             const std::function<std::optional<Control>(double, double, Control)>& rule) {
+  Driven out{{{0.0, Control::MaxTraction}}, 0.0};
+  const physics::StepSettings step{0.05, 4};
+  double e = 0.0;
+  Control c = Control::MaxTraction;
+  while (out.at_m < end_m) {
+    e = motion.advance(out.at_m, e, out.at_m + 0.5, c, step).e_end;
+    out.at_m += 0.5;
+    const std::optional<Control> next =
+        rule(out.at_m, units::ms_to_kmh(physics::speed_from_e(e)), c);
+    if (!next) break;
+    if (*next != c) out.program.push_back({out.at_m, c = *next});
+  }
+  return out;
+}
+
+// The driven program, then a hold from where it stopped and a final coast from coast_m.
+physics::ControlProgram then_hold_and_coast(Driven d, double coast_m) {
+  d.program.push_back({d.at_m, Control::Hold});
+  d.program.push_back({coast_m, Control::Coast});
+  return d.program;
+}
+
 TEST(CruiseHold, SawToothBecomesOneHoldAtItsMeanSpeed) {
   const LevelLine line;
   const physics::ControlProgram saw = saw_tooth(line, 68.0, 72.0, 9000.0);
@@ -112,29 +156,22 @@ TEST(CruiseHold, TooFewSwingsOrAWideBandAreLeftAlone) {
 // Gallen - Wil after 20 km such a hold ran 26 s slower than the grid's run at the same price).
 TEST(CruiseHold, AStaircaseUpADescentIsNoSawTooth) {
   const LevelLine line(-15.0);
-  physics::ControlProgram stairs{{0.0, Control::MaxTraction}};
-  const physics::StepSettings step{0.05, 4};
-  double s = 0.0, e = 0.0, coast_from_kmh = 0.0;
-  Control c = Control::MaxTraction;
   // Traction to 60 km/h, then coasts of 0.5 km/h gain, each followed by 0.5 km/h of traction,
   // up to 65 km/h (a band the saw tooth test accepts): every switch speed above the one before.
-  while (s < 6000.0) {
-    const auto adv = line.motion->advance(s, e, s + 0.5, c, step);
-    s += 0.5;
-    e = adv.e_end;
-    const double v_kmh = units::ms_to_kmh(physics::speed_from_e(e));
-    if (v_kmh >= 65.0) break;
-    const bool first_climb = stairs.size() == 1;
+  double coast_from_kmh = 0.0;
+  bool first_climb = true;
+  const Driven d = drive(*line.motion, 6000.0, [&](double, double v_kmh, Control c) {
+    std::optional<Control> next = c;
+    if (v_kmh >= 65.0) return std::optional<Control>();
     if (c == Control::MaxTraction &&
         (first_climb ? v_kmh >= 60.0 : v_kmh >= coast_from_kmh + 1.0)) {
-      stairs.push_back({s, c = Control::Coast});
-      coast_from_kmh = v_kmh;
+      next = Control::Coast, coast_from_kmh = v_kmh, first_climb = false;
     } else if (c == Control::Coast && v_kmh >= coast_from_kmh + 0.5) {
-      stairs.push_back({s, c = Control::MaxTraction});
+      next = Control::MaxTraction;
     }
-  }
-  stairs.push_back({s, Control::Hold});
-  stairs.push_back({8000.0, Control::Coast});
+    return next;
+  });
+  const physics::ControlProgram stairs = then_hold_and_coast(d, 8000.0);
   ASSERT_GE(stairs.size(), 8u);  // at least three coasts and three blips
   const physics::SimulationResult run = line.simulate(stairs);
   ASSERT_FALSE(run.stopped_early);
@@ -148,12 +185,7 @@ TEST(CruiseHold, AStaircaseUpADescentIsNoSawTooth) {
     }
     ASSERT_GT(v_out, v_in);
   }
-  const physics::ControlProgram kept = dp::hold_cruising(stairs, run);
-  ASSERT_EQ(kept.size(), stairs.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    EXPECT_EQ(kept[k].from_m, stairs[k].from_m);
-    EXPECT_EQ(kept[k].control, stairs[k].control);
-  }
+  expect_left_alone(stairs, run);
 }
 
 // A staircase down: coasts that lose 1 km/h, each followed by a traction blip of 0.3 km/h, from
@@ -162,36 +194,23 @@ TEST(CruiseHold, AStaircaseUpADescentIsNoSawTooth) {
 // km/h, not at the staircase's speeds, so it is left as it is.
 TEST(CruiseHold, AStaircaseDownIsNoSawTooth) {
   const LevelLine line;
-  physics::ControlProgram stairs{{0.0, Control::MaxTraction}};
-  const physics::StepSettings step{0.05, 4};
-  double s = 0.0, e = 0.0, switch_kmh = 0.0;
-  Control c = Control::MaxTraction;
-  while (s < 8000.0) {
-    const auto adv = line.motion->advance(s, e, s + 0.5, c, step);
-    s += 0.5;
-    e = adv.e_end;
-    const double v_kmh = units::ms_to_kmh(physics::speed_from_e(e));
-    if (stairs.size() > 1 && v_kmh <= 66.0) break;
-    const bool first_climb = stairs.size() == 1;
+  double switch_kmh = 0.0;
+  bool first_climb = true;
+  const Driven d = drive(*line.motion, 8000.0, [&](double, double v_kmh, Control c) {
+    std::optional<Control> next = c;
+    if (!first_climb && v_kmh <= 66.0) return std::optional<Control>();
     if (c == Control::MaxTraction && (first_climb ? v_kmh >= 70.0 : v_kmh >= switch_kmh + 0.3)) {
-      stairs.push_back({s, c = Control::Coast});
-      switch_kmh = v_kmh;
+      next = Control::Coast, switch_kmh = v_kmh, first_climb = false;
     } else if (c == Control::Coast && v_kmh <= switch_kmh - 1.0) {
-      stairs.push_back({s, c = Control::MaxTraction});
-      switch_kmh = v_kmh;
+      next = Control::MaxTraction, switch_kmh = v_kmh;
     }
-  }
-  stairs.push_back({s, Control::Hold});
-  stairs.push_back({9000.0, Control::Coast});
+    return next;
+  });
+  const physics::ControlProgram stairs = then_hold_and_coast(d, 9000.0);
   ASSERT_GE(stairs.size(), 10u);  // at least four coasts and four blips
   const physics::SimulationResult run = line.simulate(stairs);
   ASSERT_FALSE(run.stopped_early);
-  const physics::ControlProgram kept = dp::hold_cruising(stairs, run);
-  ASSERT_EQ(kept.size(), stairs.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    EXPECT_EQ(kept[k].from_m, stairs[k].from_m);
-    EXPECT_EQ(kept[k].control, stairs[k].control);
-  }
+  expect_left_alone(stairs, run);
 }
 
 // Traction riding an 80 km/h limit, a long coast through a dip (a climb, then a descent that
@@ -241,12 +260,7 @@ TEST(CruiseHold, ACoastThroughADipBetweenTwoRidesOfTheLimitIsNoSawTooth) {
   const physics::SimulationResult run =
       physics::simulate(motion, program, physics::SimulationOptions{});
   ASSERT_FALSE(run.stopped_early);
-  const physics::ControlProgram kept = dp::hold_cruising(program, run);
-  ASSERT_EQ(kept.size(), program.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    EXPECT_EQ(kept[k].from_m, program[k].from_m);
-    EXPECT_EQ(kept[k].control, program[k].control);
-  }
+  expect_left_alone(program, run);
 }
 
 TEST(CruiseHold, MergeShortEntriesDropsPhasesBelowTheMinimum) {
