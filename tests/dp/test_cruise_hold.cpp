@@ -263,6 +263,61 @@ TEST(CruiseHold, ACoastThroughADipBetweenTwoRidesOfTheLimitIsNoSawTooth) {
   expect_left_alone(program, run);
 }
 
+// A tooth whose first phase rides the 80 km/h limit, above the tooth's mean speed (about 78.3
+// km/h): after a hold at 79.5 km/h, traction rides the limit, then coasts to 78 km/h alternate
+// with blips to 78.5-78.6 km/h. The ride never reaches the mean, so a hold from its end would
+// keep 80 km/h; the ride is kept, and the hold starts where the tooth's first coast reaches the
+// mean.
+TEST(CruiseHold, AToothEnteredRidingALimitAboveItIsHeldAtItsOwnSpeed) {
+  const LevelLine line;
+  int stage = 0;  // 0 up to 79.5, 1 hold, 2 ride the limit, 3.. the tooth
+  const std::array<double, 6> switch_kmh = {78.0, 78.6, 78.0, 78.5, 78.1, 78.6};
+  Driven d = drive(*line.motion, 6000.0, [&](double s, double v_kmh, Control c) {
+    std::optional<Control> next = c;
+    if (stage == 0 && v_kmh >= 79.5)
+      next = Control::Hold, stage = 1;
+    else if (stage == 1 && s >= 1500.0)
+      next = Control::MaxTraction, stage = 2;
+    else if (stage == 2 && s >= 2500.0)
+      next = Control::Coast, stage = 3;
+    else if (stage >= 3) {
+      const double target = switch_kmh[static_cast<std::size_t>(stage - 3)];
+      if (c == Control::Coast ? v_kmh <= target : v_kmh >= target) {
+        if (stage - 3 + 1 == static_cast<int>(switch_kmh.size())) return std::optional<Control>();
+        next = c == Control::Coast ? Control::MaxTraction : Control::Coast, ++stage;
+      }
+    }
+    return next;
+  });
+  const physics::ControlProgram tooth = then_hold_and_coast(d, 8000.0);
+  ASSERT_EQ(tooth.size(), 11u);  // traction, hold, the ride, six phases of the tooth, hold, coast
+  const physics::SimulationResult run = line.simulate(tooth);
+  ASSERT_FALSE(run.stopped_early);
+  // The ride: at the limit before the tooth's first coast.
+  double v_ride_kmh = 0.0;
+  for (const auto& p : run.trace) {
+    if (p.s_m <= 2500.0) v_ride_kmh = units::ms_to_kmh(p.v_ms);
+  }
+  ASSERT_NEAR(v_ride_kmh, 80.0, 0.05);
+  // The ride is kept and the tooth's own first coast leads into the hold, at the tooth's speed.
+  const physics::ControlProgram held = dp::hold_cruising(tooth, run);
+  const physics::SimulationResult held_run = line.simulate(held);
+  ASSERT_FALSE(held_run.stopped_early);
+  std::size_t k = 0;
+  while (k + 1 < held.size() && !(held[k].control == Control::Hold && held[k].from_m > 2500.0)) {
+    ++k;
+  }
+  ASSERT_LT(k + 1, held.size());  // the tooth's hold
+  EXPECT_EQ(held[k - 1].control, Control::Coast);
+  EXPECT_EQ(held[k - 1].from_m, 2500.0);
+  for (const auto& p : held_run.trace) {
+    if (p.s_m > held[k].from_m + 1.0 && p.s_m < held[k + 1].from_m) {
+      EXPECT_GT(units::ms_to_kmh(p.v_ms), 77.9);
+      EXPECT_LT(units::ms_to_kmh(p.v_ms), 78.7);
+    }
+  }
+}
+
 TEST(CruiseHold, MergeShortEntriesDropsPhasesBelowTheMinimum) {
   const LevelLine line;
   const physics::ControlProgram program{{0.0, Control::MaxTraction},
