@@ -117,11 +117,15 @@ namespace {
 struct TraceState {
   double v_ms = 0.0, t_s = 0.0;
 };
+// The first trace point at or past s.
+BigVector<physics::TracePoint>::const_iterator point_from(
+    const BigVector<physics::TracePoint>& trace, double s) {
+  return std::lower_bound(trace.begin(), trace.end(), s,
+                          [](const physics::TracePoint& p, double x) { return p.s_m < x; });
+}
 TraceState state_at(const BigVector<physics::TracePoint>& trace, double s) {
   if (trace.empty()) return {};
-  const auto it =
-      std::lower_bound(trace.begin(), trace.end(), s,
-                       [](const physics::TracePoint& p, double x) { return p.s_m < x; });
+  const auto it = point_from(trace, s);
   if (it == trace.begin()) return {it->v_ms, it->t_s};
   if (it == trace.end()) return {trace.back().v_ms, trace.back().t_s};
   const auto& b = *it;
@@ -150,8 +154,7 @@ bool stays_between(const BigVector<physics::TracePoint>& trace, double from_m, d
 
 // Whether the run reaches s riding a speed limit (traction the limit caps).
 bool rides_limit_into(const BigVector<physics::TracePoint>& trace, double s) {
-  auto it = std::lower_bound(trace.begin(), trace.end(), s,
-                             [](const physics::TracePoint& p, double x) { return p.s_m < x; });
+  const auto it = point_from(trace, s);
   if (it == trace.begin()) return false;
   return std::prev(it)->regime == physics::Regime::PartialTraction;
 }
@@ -205,6 +208,7 @@ physics::ControlProgram hold_cruising(const physics::ControlProgram& program,
     // the band.
     std::size_t j = i;
     double v_lo = INFINITY, v_hi = -INFINITY;
+    double v_start = state_at(trace, program[i].from_m).v_ms;  // at the start of phase j
     while (swings(program[i].control) && j + 1 < n && swings(program[j + 1].control) &&
            program[j + 1].control != program[j].control) {
       const double v = state_at(trace, program[j + 1].from_m).v_ms;
@@ -219,7 +223,6 @@ physics::ControlProgram hold_cruising(const physics::ControlProgram& program,
       // its mean speed, a staircase from a limit down a dip and up to a cruise (TTOBench St
       // Gallen - Wil after 20 km, KISS) ran 26 s slower and met the time at a price that cost
       // 0.5 % more than the grid's own run.
-      const double v_start = state_at(trace, program[j].from_m).v_ms;
       if (program[j].control == Control::MaxTraction ? v < v_start : v > v_start) break;
       // Each phase of the tooth runs between its end speeds. A long coast that dips through a
       // climb and comes back up a descent between two traction phases riding a limit ends
@@ -228,7 +231,7 @@ physics::ControlProgram hold_cruising(const physics::ControlProgram& program,
       if (j > i && !stays_between(trace, program[j].from_m, program[j + 1].from_m, v_start, v)) {
         break;
       }
-      v_lo = lo, v_hi = hi;
+      v_lo = lo, v_hi = hi, v_start = v;
       ++j;
     }
     // Switches i+1..j: j - i of them, alternating maxima and minima of the speed.
