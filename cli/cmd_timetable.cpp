@@ -150,6 +150,13 @@ void run_optimise(const TimetableArgs& a) {
                           {"gap_fraction", "--gap"},
                           {"anneal_step_s", "--anneal-step"},
                           {"threads", "--threads"}});
+  const bool given = !a.headways_file.empty() || !a.departures_file.empty();
+  if (given && so.pattern)
+    bad(a.headways_file.empty() ? "--departures" : "--headways",
+        "--optimise headways (a given timetable is a start for the headway search, whose "
+        "pattern is fixed)");
+  // Read before the sections are built: a bad file is refused at once.
+  if (given) o.given_starts_s = {read_departures(a, fleet_problem(a))};
   fleet::TimetableStudy s = make_study(a);
   if (!a.quiet && isatty(STDERR_FILENO)) {
     o.progress = [](const fleet::OptimiserProgress& p) {
@@ -229,7 +236,12 @@ void add_timetable_command(CLI::App& app) {
   op->add_flag("--per-train-patterns", opt_args.search.per_train_patterns,
                "each train its own dwells and running times (implies --optimise pattern; "
                "power-flow and sections models)");
-  input_files(op, {"--power-supply"});
+  op->add_option("--headways", opt_args.headways_file,
+                 "a timetable to start from too, CSV with a column headway_s (the result never "
+                 "uses less regenerated energy)");
+  op->add_option("--departures", opt_args.departures_file,
+                 "a timetable to start from too, CSV with a column departure_s");
+  input_files(op, {"--headways", "--departures", "--power-supply"});
   op->callback([op] {
     opt_args.optimise_given = op->get_option("--optimise")->count() > 0;
     run_optimise(opt_args);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "fleet/headway_dp.hpp"
@@ -162,6 +163,11 @@ std::string HeadwayOptimiserSummary::FullReport() const {
                   pair_sum_J / 1e3, 100.0 * (pair_sum_J - used_regen_J) / substation_J);
     out += buf;
   }
+  if (std::isfinite(given_start_used_J)) {
+    std::snprintf(buf, sizeof buf, "  given timetable (used regen): %.1f kJ\n",
+                  given_start_used_J / 1e3);
+    out += buf;
+  }
   if (!exact_part.empty()) {
     std::snprintf(buf, sizeof buf,
                   "  exact search on part of the domain: no timetable with %s uses more than "
@@ -207,6 +213,9 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   if (!p.IsValid(&why)) throw std::invalid_argument(why);
   if (model.limits().trains != p.trains || model.limits().span_s != p.span_s)
     throw std::invalid_argument("the model was built for another fleet than the problem's");
+  for (const std::vector<int>& given : options.given_starts_s)
+    if (const std::string bad = departures_problem(p, given); !bad.empty())
+      throw std::invalid_argument("given start: " + bad);
   const auto report = [&](const std::string& stage, double best, double bound) {
     if (options.progress) options.progress({seconds_since(t0), best, bound, stage});
   };
@@ -276,6 +285,14 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     proxy_coarse = proxy->on_grid(options.anneal_step_s);
   const FleetEnergyModel& start_model = proxy ? *proxy : model;
   const FleetEnergyModel& start_coarse = proxy ? *proxy_coarse : *coarse;
+  // The caller's timetables first (ties go to them), kept near their structure.
+  for (const std::vector<int>& given : options.given_starts_s) {
+    starts.push_back(given);
+    start_temperature.push_back(options.reanneal_temperature);
+  }
+  if (!options.given_starts_s.empty())
+    method_starts =
+        options.given_starts_s.size() == 1 ? "the given timetable, " : "the given timetables, ";
   std::vector<int> relaxed_departures;
   if (options.relaxed_start && !p.windowed()) {
     // Every join of the maximisers near the span, priced on the annealing's grid side by side:
@@ -312,7 +329,7 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
                     "of the %s model: used %.1f -> %.1f kJ), ",
                     r.grid_s, r.arrangement_evaluations, std::string(start_model.name()).c_str(),
                     r.dp_used_J * 1e-3, r.arranged_used_J * 1e-3);
-      method_starts = buf;
+      method_starts += buf;
     }
   }
   report("periodic regimes", 0.0, bound_used);
@@ -521,8 +538,23 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     report("round " + std::to_string(round), used_of(best.substation), bound_used);
   }
 
-  out.headways_s = headways_from_departures(best.best);
+  // The caller's timetables bound the result: priced above where the plan prices starts (then
+  // the search's result is never worse already), here on the model itself where it does not.
+  std::optional<FleetEvaluation> given_best;
+  for (const std::vector<int>& given : options.given_starts_s) {
+    FleetEvaluation e = model.evaluate(given);
+    if (!given_best || e.total.substation_J() < given_best->total.substation_J())
+      given_best = std::move(e);
+  }
   out.evaluation = model.evaluate(best.best);
+  if (given_best) {
+    s.given_start_used_J = given_best->used_regen_J();
+    if (given_best->total.substation_J() < out.evaluation.total.substation_J()) {
+      best.best = given_best->departures_s;
+      out.evaluation = std::move(*given_best);
+    }
+  }
+  out.headways_s = headways_from_departures(best.best);
   s.method =
       method_starts + "annealing (" + std::to_string(runs) + " runs, " + std::to_string(s.rounds) +
       " further rounds) and polish" + plan.method_note +

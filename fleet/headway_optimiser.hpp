@@ -78,6 +78,11 @@ struct HeadwayOptimiserOptions {
   // every headway in the core) within the time left; its optimum replaces the result when
   // better, and the summary names the part no timetable of which is better.
   bool exact_part = true;
+  // The caller's own timetables (departures, each keeping the problem), also starts: each is
+  // annealed from reanneal_temperature (it keeps its structure) and polished, and the result
+  // never uses less than the best of them on the model's grid. A model solved exactly (the
+  // overlap models) needs none: its optimum is never worse.
+  std::vector<std::vector<int>> given_starts_s;
   std::function<void(const OptimiserProgress&)> progress;
   bool IsValid(std::string* error) const;
 };
@@ -96,6 +101,9 @@ struct HeadwayOptimiserSummary {
   double bound_substation_J = std::numeric_limits<double>::quiet_NaN();
   double curtailed_traction_J = 0.0;
   double start_used_J = 0.0;  // best start before annealing and polish
+  // The best of HeadwayOptimiserOptions::given_starts_s on the model's grid (NaN: none given,
+  // or a model solved exactly); the result never uses less.
+  double given_start_used_J = std::numeric_limits<double>::quiet_NaN();
   // Pair sum of the result (energy/pair_bound.hpp): no bound built on pairs of trains can come
   // below it, so (pair sum - used) / substation is the part of the gap such a bound cannot close.
   double pair_sum_J = 0.0;

@@ -98,6 +98,8 @@ nlohmann::json timetable_optimisation_json(const fleet::TimetableStudy& study,
   if (!sm.exact_part.empty())
     energy["summary"]["exact_part"] = {{"timetables", "every timetable with " + sm.exact_part},
                                        {"best_used_regen_kJ", sm.exact_part_used_J / 1e3}};
+  if (std::isfinite(sm.given_start_used_J))
+    energy["summary"]["given_start_used_regen_kJ"] = sm.given_start_used_J / 1e3;
   if (o.pattern_search) energy["pattern_search"] = pattern_search_json(*o.pattern_search);
   add_study(energy, study, result.evaluation);
   return energy;

@@ -264,6 +264,8 @@ class timetable:  # submodule ecorail.timetable
                      time_limit_s: float = 0.0, restarts: int = 2, rounds: int = 0, moves: int = 2000000,
                      anneal_step_s: float = 1.0, gap: float = 1e-4, pattern: bool = False,
                      per_train_patterns: bool = False,
+                     departures_s: Optional[Sequence[int]] = None,
+                     headways_s: Optional[Sequence[int]] = None,
                      progress: Progress = None) -> "timetable.FleetResult": ...
         def separation(self, *, departures_s: Optional[Sequence[int]] = None,
                        headways_s: Optional[Sequence[int]] = None, trains: int = 100,
@@ -306,6 +308,8 @@ class timetable:  # submodule ecorail.timetable
                  threads: int = 0, seed: int = 1, time_limit_s: float = 0.0,
                  restarts: int = 2, rounds: int = 0, moves: int = 2000000, anneal_step_s: float = 1.0,
                  gap: float = 1e-4, pattern: bool = False, per_train_patterns: bool = False,
+                 departures_s: Optional[Sequence[int]] = None,
+                 headways_s: Optional[Sequence[int]] = None,
                  progress: Progress = None) -> "timetable.FleetResult": ...
 
 class delay:  # submodule ecorail.delay

@@ -296,10 +296,22 @@ fleet::StudyOptimiseOptions search_options(std::uint64_t seed, double time_limit
   return so;
 }
 
+// departures_s / headways_s (None: none): a timetable the search starts from too, whose used
+// energy the result never falls below (`timetable optimise --departures/--headways`).
 PyFleet optimise_py(FleetState& state, const FleetArgs& a, fleet::StudyOptimiseOptions so,
+                    const py::object& departures_s, const py::object& headways_s,
                     const py::object& progress) {
   const fleet::FleetProblem problem = fleet_problem(a);
   fleet::HeadwayOptimiserOptions& o = so.headways;
+  if (!departures_s.is_none() || !headways_s.is_none()) {
+    const char* field = departures_s.is_none() ? "headways_s" : "departures_s";
+    if (so.pattern)
+      bad_argument(field,
+                   "pattern=False and per_train_patterns=False (a given timetable is a start for "
+                   "the headway search, whose pattern is fixed)",
+                   "a pattern search");
+    o.given_starts_s = {given_departures(problem, departures_s, headways_s)};
+  }
   o.threads = a.engine.threads;
   if (so.per_train_patterns && energy::is_energy_model(a.model) &&
       !energy::model_inputs(a.model).per_train_trips) {
@@ -463,6 +475,10 @@ auto search_kwargs() {  // seed, time_limit_s, restarts, rounds, moves, anneal_s
       py::arg("pattern") = d.pattern, py::arg("per_train_patterns") = d.per_train_patterns);
 }
 
+auto start_kwargs() {  // departures_s, headways_s: a timetable optimise() also starts from
+  return std::make_tuple(py::arg("departures_s") = py::none(), py::arg("headways_s") = py::none());
+}
+
 // target.def(name, f, extras...) with the extras given as tuples (the kwargs groups above).
 template <class Target, class F, class... Groups>
 void def_with(Target& target, const char* name, F&& f, Groups&&... groups) {
@@ -608,15 +624,15 @@ void bind_timetable(py::module_& m) {
          std::vector<Range> peaks, Range peak_headway_s, Range offpeak_headway_s,
          std::uint64_t seed, double time_limit_s, int restarts, int rounds, long moves,
          double anneal_step_s, double gap, bool pattern, bool per_train_patterns,
-         const py::object& progress) {
+         const py::object& departures_s, const py::object& headways_s, const py::object& progress) {
         return optimise_py(*f.state,
                            with_problem(f, trains, span_s, headway_s, dwell_range_s,
                                         std::move(peaks), peak_headway_s, offpeak_headway_s),
                            search_options(seed, time_limit_s, restarts, rounds, moves,
                                           anneal_step_s, gap, pattern, per_train_patterns),
-                           progress);
+                           departures_s, headways_s, progress);
       },
-      std::make_tuple(py::kw_only()), problem_kwargs(), search_kwargs(),
+      std::make_tuple(py::kw_only()), problem_kwargs(), search_kwargs(), start_kwargs(),
       std::make_tuple(py::arg("progress") = py::none(),
                       "ecorail.timetable.optimise on this fleet's sections and pattern (the Fleet "
                       "keeps its own pattern: a pattern search runs on a study of its own)."));
@@ -679,7 +695,9 @@ void bind_timetable(py::module_& m) {
           "larger gap is NO_CONVERGENCE with its gap (a result: is_solution_usable). "
           "pattern: the dwells and running times too (`--optimise pattern`); "
           "per_train_patterns: each train its own pattern (power-flow and sections "
-          "models).") +
+          "models). departures_s or headways_s: a timetable to start from too "
+          "(`--departures`/`--headways`); the result never uses less regenerated energy "
+          "than it (summary given_start_used_regen_kJ in to_dict()).") +
       kFleetDoc;
   def_with(
       tt, "optimise",
@@ -689,7 +707,8 @@ void bind_timetable(py::module_& m) {
          Range headway_s, Range dwell_range_s, std::vector<Range> peaks, Range peak_headway_s,
          Range offpeak_headway_s, double ds_m, double dv_kmh, int threads, std::uint64_t seed,
          double time_limit_s, int restarts, int rounds, long moves, double anneal_step_s,
-         double gap, bool pattern, bool per_train_patterns, const py::object& progress) {
+         double gap, bool pattern, bool per_train_patterns, const py::object& departures_s,
+         const py::object& headways_s, const py::object& progress) {
         FleetArgs a;
         add_fleet_args(a, model, overlap, step_s, std::move(sections_at_m), std::move(power_supply),
                        trip_time_s, dwell_s, ds_m, dv_kmh, threads);
@@ -698,10 +717,10 @@ void bind_timetable(py::module_& m) {
         return optimise_py(*fleet_state(line, train, a), a,
                            search_options(seed, time_limit_s, restarts, rounds, moves,
                                           anneal_step_s, gap, pattern, per_train_patterns),
-                           progress);
+                           departures_s, headways_s, progress);
       },
       std::make_tuple(py::arg("line"), py::arg("train"), py::kw_only()), model_kwargs(),
-      run_kwargs(), problem_kwargs(), grid_kwargs(), search_kwargs(),
+      run_kwargs(), problem_kwargs(), grid_kwargs(), search_kwargs(), start_kwargs(),
       std::make_tuple(py::arg("progress") = py::none(), optimise_doc.c_str()));
 }
 

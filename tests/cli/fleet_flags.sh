@@ -4,7 +4,8 @@
 # --separation flag and a time step too fine for the machine are one clear error (exit 2,
 # nothing written); a load flow without a solution prints no result line; a heuristic search
 # stopped by its move budget says NO_CONVERGENCE with its gap (exit 0), an exact DP CONVERGENCE,
-# and a --gap wide enough to cover the proven gap makes the same search CONVERGENCE.
+# and a --gap wide enough to cover the proven gap makes the same search CONVERGENCE. A timetable
+# given to optimise (--headways, --departures) bounds its result from below in used energy.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
 
@@ -59,5 +60,47 @@ assert "NO_CONVERGENCE" in h["summary"]["brief_report"] and "gap" in h["summary"
 assert w["summary"]["termination"] == "CONVERGENCE" and w["substation_energy_kJ"] == h["substation_energy_kJ"]
 assert e["summary"]["termination"] == "CONVERGENCE" and e["summary"]["exact"] and e["gap_fraction_of_substation"] == 0
 PY
+
+# A timetable to start from (optimise --headways / --departures): the result never uses less
+# than it, even when the search alone (no annealing) ends lower; the JSON names what it used.
+# A file that breaks the problem, one with --optimise pattern, both flags, and an output that
+# would replace it are refused (exit 2, nothing written).
+fleet20=(--from A6 --to A9 --trains 20 --span 3800 --headway 150:250 --trip-time 480 --quiet)
+"$ecorail" timetable optimise "${fleet20[@]}" --moves 20000 --restarts 4 --json searched.json \
+  > /dev/null || { echo "FAIL: optimise --restarts 4 exit $?"; fail=1; }
+"$ecorail" timetable optimise "${fleet20[@]}" --restarts 0 --json alone.json > /dev/null ||
+  { echo "FAIL: optimise --restarts 0 exit $?"; fail=1; }
+python3 - <<'PY' || fail=1
+import json
+h = json.load(open("searched.json"))
+with open("start.csv", "w") as f:
+    f.write("headway_s\n" + "".join(f"{x}\n" for x in h["headways_s"]))
+with open("start_departures.csv", "w") as f:
+    f.write("departure_s\n" + "".join(f"{x}\n" for x in h["departures_s"]))
+with open("broken.csv", "w") as f:
+    f.write("headway_s\n" + "".join(f"{x}\n" for x in h["headways_s"][:-1] + [h["headways_s"][-1] + 1]))
+PY
+"$ecorail" timetable optimise "${fleet20[@]}" --restarts 0 --headways start.csv \
+  --json given.json > /dev/null || { echo "FAIL: optimise --headways exit $?"; fail=1; }
+"$ecorail" timetable optimise "${fleet20[@]}" --restarts 0 --departures start_departures.csv \
+  --json given_departures.json > /dev/null || { echo "FAIL: optimise --departures exit $?"; fail=1; }
+python3 - <<'PY' || fail=1
+import json
+h = json.load(open("searched.json")); a = json.load(open("alone.json"))
+g = json.load(open("given.json")); d = json.load(open("given_departures.json"))
+assert a["used_regen_kJ"] < h["used_regen_kJ"] - 1e-6, (a["used_regen_kJ"], h["used_regen_kJ"])
+assert g["used_regen_kJ"] >= h["used_regen_kJ"] - 1e-6, (g["used_regen_kJ"], h["used_regen_kJ"])
+assert abs(g["summary"]["given_start_used_regen_kJ"] - h["used_regen_kJ"]) < 1e-6, g["summary"]
+assert "given timetable" in g["summary"]["method"], g["summary"]["method"]
+assert d["departures_s"] == g["departures_s"] and "given_start_used_regen_kJ" not in a["summary"]
+PY
+expect_error "broken.csv" timetable optimise "${fleet20[@]}" --headways broken.csv --json out.json
+expect_error "--optimise headways" timetable optimise "${fleet20[@]}" --headways start.csv \
+  --optimise pattern --json out.json
+expect_error "either --headways or --departures" timetable optimise "${fleet20[@]}" \
+  --headways start.csv --departures start_departures.csv --json out.json
+cp start.csv start_kept.csv
+expect_error "start.csv" timetable optimise "${fleet20[@]}" --headways start.csv --csv start.csv
+cmp -s start.csv start_kept.csv || { echo "FAIL: the given timetable was overwritten"; fail=1; }
 
 exit $fail

@@ -64,6 +64,36 @@ def test_timetable_optimise_matches_cli(reference, run_cli):
     assert f"{r.substation_energy_kJ:.1f}" == "54177502.3"  # README: the exact chain DP
 
 
+def test_optimise_from_a_given_timetable(reference, run_cli, tmp_path):
+    # A timetable to start from (headways_s / departures_s, `--headways`): the program's
+    # document, and a result that never uses less than the timetable, although the search
+    # alone (no annealing) ends lower.
+    line, train = reference
+    fleet = ecorail.timetable.Fleet(line, train)
+    searched = fleet.optimise(trains=12, span_s=6000, moves=20000, restarts=4)
+    alone = fleet.optimise(trains=12, span_s=6000, restarts=0)
+    headways = searched.to_dict()["headways_s"]
+    given = fleet.optimise(trains=12, span_s=6000, restarts=0, headways_s=headways)
+    assert alone.to_dict()["used_regen_kJ"] < searched.to_dict()["used_regen_kJ"] - 1e-6
+    assert given.to_dict()["used_regen_kJ"] >= searched.to_dict()["used_regen_kJ"] - 1e-6
+    summary = given.to_dict()["summary"]
+    assert summary["given_start_used_regen_kJ"] == pytest.approx(
+        searched.to_dict()["used_regen_kJ"], abs=1e-6)
+    csv = tmp_path / "start.csv"
+    csv.write_text("headway_s\n" + "".join(f"{h}\n" for h in headways))
+    cli = run_cli("timetable", "optimise", "--trains", "12", "--span", "6000", "--restarts", "0",
+                  "--headways", csv, "--quiet")
+    clock = ("wall_s", "brief_report")
+    assert without_wall_times(given.to_dict(), clock) == without_wall_times(cli, clock)
+    departures = searched.to_dict()["departures_s"]
+    by_departures = fleet.optimise(trains=12, span_s=6000, restarts=0, departures_s=departures)
+    assert by_departures.to_dict()["departures_s"] == given.to_dict()["departures_s"]
+    with pytest.raises(ValueError, match="^headways_s: expected pattern=False"):
+        fleet.optimise(trains=12, span_s=6000, headways_s=headways, pattern=True)
+    with pytest.raises(ValueError, match="headways_s"):
+        fleet.optimise(trains=12, span_s=6000, headways_s=headways[:-1])
+
+
 def test_timetable_bad_values(reference):
     line, train = reference
     with pytest.raises(ValueError, match="model"):
