@@ -229,12 +229,13 @@ class PartSolver {
   PartSolver(const SectionEngine& engine, const StartState& start, const EndCheck& end,
              double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
              const std::vector<TimingWindow>& windows, const TimingJourneyOptions& options,
-             bool bands_on_both_stages)
+             bool bands_on_both_stages, bool arrival_free)
       : engine_(engine),
         start_(start),
         end_(end),
         target_s_(target_s),
         earliest_arrival_s_(earliest_arrival_s),
+        arrival_free_(arrival_free),
         points_(std::move(points)),
         windows_(windows),
         options_(options),
@@ -386,6 +387,10 @@ class PartSolver {
     double best_abs = kInf;
     Inner floor_run;
     double floor_x = kInf;
+    // A free arrival (arrival_free_): the latest early run that arrives, not before the
+    // earliest arrival.
+    Inner slowest;
+    double slowest_s = -kInf;
     auto f = [&](double x) {
       const double after = std::exp(x);
       LambdaRun run = evaluate(before, after);
@@ -394,6 +399,11 @@ class PartSolver {
         best_abs = std::abs(err);
         best = {run, x, best_abs <= kMaxTrim_s};
       }
+      if (arrival_free_ && finite(err) && err < 0.0 && run.sim.running_time_s > slowest_s &&
+          run.sim.running_time_s >= earliest_arrival_s_ - options_.time_tolerance_s) {
+        slowest_s = run.sim.running_time_s;
+        slowest = {run, x, true};
+      }
       if (finite(err) && err < 0.0 && x < floor_x) {
         floor_x = x;
         floor_run = {std::move(run), x, false};
@@ -401,7 +411,14 @@ class PartSolver {
       return err;
     };
     falling_root(f, x_after_guess_, step, 0.0, 30.0, kInnerBudget, stop_s);
-    if (!best.ok && floor_x <= 1e-9) {
+    if (!best.ok && slowest.ok) {
+      // The part's latest arrival lies beyond the slowest run the grid solves reliably, and no
+      // run came within reach of that run's time (the windows make the rest of the run faster,
+      // or slower runs stall): the arrival does not bind, and the latest early run arrives
+      // inside the window.
+      best = std::move(slowest);
+      arrival_at_floor_ = true;
+    } else if (!best.ok && floor_x <= 1e-9) {
       // Too fast even at the lowest price: the arrival does not bind (if it is not too early).
       const double t = floor_run.run.sim.running_time_s;
       floor_run.ok = t >= earliest_arrival_s_ - options_.time_tolerance_s;
@@ -1663,6 +1680,9 @@ class PartSolver {
   EndCheck end_;
   double target_s_;
   double earliest_arrival_s_;
+  // The part's latest arrival lies beyond target_s_ (the slowest run the grid solves reliably):
+  // any arrival from earliest_arrival_s_ to target_s_ is inside the window.
+  bool arrival_free_ = false;
   std::vector<PartPoint> points_;
   const std::vector<TimingWindow>& windows_;
   const TimingJourneyOptions& options_;
@@ -1687,7 +1707,7 @@ class PartSolver {
 PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
                        double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
                        const std::vector<TimingWindow>& windows,
-                       const TimingJourneyOptions& options) {
+                       const TimingJourneyOptions& options, bool arrival_free) {
   // Speed windows between stages are banded on the sweep's transitions first (the window
   // itself); when that search ends without a run meeting every window, on the nodes of the
   // stages either side (stricter, PartSolver::bands_at), and that run is kept if it does.
@@ -1698,11 +1718,12 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   };
   auto attempt = [&](bool both_stages) {
     PartSolver solver(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
-                      both_stages);
+                      both_stages, arrival_free);
     Attempt a;
     PartOutcome& out = a.out;
     out.run = solver.solve(&out.met);
-    a.holds = out.met && solver.every_window_holds(out.run);
+    out.holds = solver.every_window_holds(out.run);
+    a.holds = out.met && out.holds;
     a.banded_transitions = solver.banded_transitions();
     out.evaluations = solver.evaluations();
     out.points = solver.points();

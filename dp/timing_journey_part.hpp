@@ -59,7 +59,8 @@ struct PartPoint {
 // What one part's search gives.
 struct PartOutcome {
   LambdaRun run;
-  bool met = false;  // the part's windows and its arrival hold (as far as its search knows)
+  bool met = false;    // the part's windows and its arrival hold (as far as its search knows)
+  bool holds = false;  // every window of the part and its arrival hold on the run's re-simulation
   int evaluations = 0;
   std::vector<PartPoint> points;
   std::vector<std::string> notes;
@@ -72,11 +73,14 @@ struct PartOutcome {
 };
 
 // The part's least-energy run from start (target_s after the departure at the latest; not
-// before earliest_arrival_s) meeting the windows of points. Throws TimeRequestError (e.g.
-// LongTimeError) when the plain search for the arrival does.
+// before earliest_arrival_s) meeting the windows of points. arrival_free: the part's latest
+// arrival lies beyond target_s (the slowest run the grid solves reliably), so a run that
+// arrives earlier is inside its window: where no price meets target_s, the latest early run
+// is taken. Throws TimeRequestError (e.g. LongTimeError) when the plain search for the arrival
+// does.
 PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
                        double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
                        const std::vector<TimingWindow>& windows,
-                       const TimingJourneyOptions& options);
+                       const TimingJourneyOptions& options, bool arrival_free = false);
 
 }  // namespace ecorail::dp::timing

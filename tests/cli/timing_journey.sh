@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `ecorail solve --journey J.json` (TTOBench timing points) on a small track made here, at a
 # coarse grid: the windows hold in the written re-simulation and a binding one is named; a
-# window no run can meet is refused naming it (exit 2, nothing written); --journey does not go
+# window no run can meet is refused naming it (exit 2, nothing written); an earliest bound that
+# holds the run back just before a latest one that needs it fast is met; --journey does not go
 # with --from/--to/--time; malformed journeys name their JSON path.
 set -uo pipefail
 source "$(dirname "$0")/lib/common.sh" "$@"
@@ -18,6 +19,14 @@ journey() {  # journey FILE VALUES: a journey file with the given timing points
 JSON
 }
 grid=(--ds 5 --dv 0.5 --quiet)
+solve_journeys() {  # solve_journeys NAME...: each NAME.json solved on the grid into NAME_out.json
+  local f
+  for f in "$@"; do
+    "$ecorail" solve --line track.data --train train.data --journey "$f.json" "${grid[@]}" \
+      --json "${f}_out.json" > /dev/null 2> err.txt ||
+      { echo "FAIL: journey $f exit $?"; cat err.txt; fail=1; }
+  done
+}
 
 # The plain solve for 190 s passes 1500 m at some time; a window 5 s earlier than that binds.
 "$ecorail" solve --line track.data --train train.data --from S0 --to S1 --time 190 "${grid[@]}" \
@@ -201,10 +210,7 @@ fi
 # window's earliest time (the rule before the search), and by symmetry the stop is mid-time.
 journey onestop.json '[[0,0,0,0,0],[1500,100,130,0,0],[3000,230,230,0,0]]'
 journey pinned.json '[[0,0,0,0,0],[1500,100,100,0,0],[3000,230,230,0,0]]'
-for f in onestop pinned; do
-  "$ecorail" solve --line track.data --train train.data --journey $f.json "${grid[@]}" \
-    --json ${f}_out.json > /dev/null 2> err.txt || { echo "FAIL: journey $f"; cat err.txt; fail=1; }
-done
+solve_journeys onestop pinned
 python3 - onestop_out.json pinned_out.json <<'PY' || fail=1
 import json, sys
 j, pinned = (json.load(open(f)) for f in sys.argv[1:])
@@ -226,5 +232,26 @@ $tty_run > /dev/null 2> err.txt || { echo "FAIL: tty.json"; cat err.txt; fail=1;
 if grep -q "ecorail solve:" err.txt; then echo "FAIL: progress on a file"; cat err.txt; fail=1; fi
 expect_tty_progress "$tty_run" "ecorail solve: price evaluation [0-9]" timing_journey || true
 
+# An earliest bound at 1000 m that holds the run back and a latest one 100 m on that needs it
+# fast (at least 60 km/h between them). With the latest arrival beyond the slowest run the grid
+# solves reliably (600 s), any earlier arrival is in the window; with one that binds (400 s) the
+# price search misses the earliest bound, and earlier latest arrivals are tried (a warning says
+# which). Both are met on the written re-simulation (both exit 1 before).
+journey held_free.json '[[0,0,0,0,0],[1000,200,300,0,80],[1100,0,206,0,80],[3000,0,600,0,0]]'
+journey held_bound.json '[[0,0,0,0,0],[1000,200,300,0,80],[1100,0,206,0,80],[3000,0,400,0,0]]'
+solve_journeys held_free held_bound
+python3 - held_free_out.json held_bound_out.json <<'PY' || fail=1
+import json, sys
+for name, latest in zip(sys.argv[1:], (600, 400)):
+    j = json.load(open(name))
+    w = j["windows"]
+    assert j["windows_met"] is True, (name, w)
+    assert w[1]["time_s"] >= 200 - 0.05 and w[2]["time_s"] <= 206 + 0.05, (name, w)
+    assert w[3]["time_s"] <= latest + 0.05 and w[3]["speed_kmh"] == 0, (name, w[3])
+bound = json.load(open(sys.argv[2]))
+assert any("latest arrival searched at" in x for x in bound["warnings"]), bound["warnings"]
+PY
+
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
+
 exit "$fail"

@@ -337,6 +337,25 @@ TEST(TimingJourney, ABindingEarliestWindowIsMet) {
             ref.run.sim.energy.traction_work_J);
 }
 
+// An earliest bound that holds the run back just before a latest bound that needs it fast, with a
+// latest arrival beyond the slowest run the grid solves reliably: any earlier arrival lies in the
+// window, so the search no longer holds the run at that slowest run's time (where it missed the
+// earliest bound: exit 1 from `solve`). Met on the re-simulation. (With the arrival binding, a
+// part whose run misses a window is searched again with earlier latest arrivals:
+// tests/cli/timing_journey.sh.)
+TEST(TimingJourney, AnEarliestBoundJustBeforeALatestOneIsMet) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1000, 120, 400),
+                                       pass_at(1100, 0, 126), stop_at(3000, 0, 900)};
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "held");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  EXPECT_GE(sol.windows[1].time_s, 120.0 - coarse().time_tolerance_s);
+  EXPECT_LE(sol.windows[2].time_s, 126.0 + coarse().time_tolerance_s);
+  EXPECT_LE(sol.summary.running_time_s, 900.0);
+}
+
 TEST(TimingJourney, AWindowBelowTheFlatOutTimeIsRefusedNamingIt) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
