@@ -240,7 +240,7 @@ void split_overlapping_stops(const Journey& jy, const std::vector<char>& overlap
 // inside it. Returns whether every part's search met its windows; *all_arrive whether every
 // run reaches its end.
 // Earlier latest arrivals tried where a part's run misses a window (solve_parts).
-constexpr int kEarlierArrivals = 5;
+constexpr int kEarlierArrivals = 3;
 
 // Part j searched again with its latest arrival kEarlierArrivals times a tenth of its time
 // earlier, down to its earliest arrival; the first outcome whose windows hold replaces o (the
