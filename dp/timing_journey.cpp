@@ -235,10 +235,6 @@ void split_overlapping_stops(const Journey& jy, const std::vector<char>& overlap
   }
 }
 
-// Step 5: each part solved; its run becomes a section of out.journey. binding_sign and
-// bind_slack (per timing point) say which bound binds and by how much a binding point may pass
-// inside it. Returns whether every part's search met its windows; *all_arrive whether every
-// run reaches its end.
 // Earlier latest arrivals tried where a part's run misses a window (solve_parts).
 constexpr int kEarlierArrivals = 3;
 
@@ -275,6 +271,10 @@ PartOutcome earlier_arrivals(const Journey& jy, std::size_t j, TimingPart& part,
   return o;
 }
 
+// Step 5: each part solved; its run becomes a section of out.journey. binding_sign and
+// bind_slack (per timing point) say which bound binds and by how much a binding point may pass
+// inside it. Returns whether every part's search met its windows; *all_arrive whether every
+// run reaches its end.
 bool solve_parts(const Journey& jy, TimingJourneySolution& out,
                  std::vector<std::vector<PartPoint>>& part_points, std::vector<int>& binding_sign,
                  std::vector<double>& bind_slack, bool* all_arrive) {

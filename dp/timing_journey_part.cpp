@@ -1713,8 +1713,9 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   // stages either side (stricter, PartSolver::bands_at), and that run is kept if it does.
   struct Attempt {
     PartOutcome out;
-    bool holds = false;               // every window holds on the run's re-simulation
     bool banded_transitions = false;  // a window was banded on the sweep's transitions
+    // The search met the windows and every one holds on the run's re-simulation.
+    bool kept() const { return out.met && out.holds; }
   };
   auto attempt = [&](bool both_stages) {
     PartSolver solver(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
@@ -1723,7 +1724,6 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     PartOutcome& out = a.out;
     out.run = solver.solve(&out.met);
     out.holds = solver.every_window_holds(out.run);
-    a.holds = out.met && out.holds;
     a.banded_transitions = solver.banded_transitions();
     out.evaluations = solver.evaluations();
     out.points = solver.points();
@@ -1737,9 +1737,9 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     return a;
   };
   Attempt first = attempt(false);
-  if (first.holds || !first.banded_transitions) return std::move(first.out);
+  if (first.kept() || !first.banded_transitions) return std::move(first.out);
   Attempt strict = attempt(true);
-  PartOutcome& kept = strict.holds ? strict.out : first.out;
+  PartOutcome& kept = strict.kept() ? strict.out : first.out;
   kept.evaluations = first.out.evaluations + strict.out.evaluations;
   return std::move(kept);
 }

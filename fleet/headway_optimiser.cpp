@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <stdexcept>
 
 #include "fleet/headway_dp.hpp"
@@ -359,6 +358,9 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
       const FleetEvaluation e = model.evaluate(starts[i]);
       const auto sub = static_cast<MicroJoules>(std::llround(e.total.substation_J() * 1e6));
       if (i == 0 || sub < best_start_substation) best_start = i, best_start_substation = sub;
+      // The caller's timetables are the first starts (ties go to them).
+      if (i < options.given_starts_s.size() && best_start == i)
+        s.given_start_used_J = e.used_regen_J();
       s.start_used_J = std::max(s.start_used_J, e.total.used_regen_J);
       traction_J = e.total.traction_J;
       evaluate_s = std::max(evaluate_s, seconds_since(e0));
@@ -538,20 +540,18 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
     report("round " + std::to_string(round), used_of(best.substation), bound_used);
   }
 
-  // The caller's timetables bound the result: priced above where the plan prices starts (then
-  // the search's result is never worse already), here on the model itself where it does not.
-  std::optional<FleetEvaluation> given_best;
-  for (const std::vector<int>& given : options.given_starts_s) {
-    FleetEvaluation e = model.evaluate(given);
-    if (!given_best || e.total.substation_J() < given_best->total.substation_J())
-      given_best = std::move(e);
-  }
+  // The caller's timetables bound the result. Where the plan prices its starts they were priced
+  // with them, and a start better than every polished run stays the result; where it does not
+  // (the network), they are priced here, on the model itself.
   out.evaluation = model.evaluate(best.best);
-  if (given_best) {
-    s.given_start_used_J = given_best->used_regen_J();
-    if (given_best->total.substation_J() < out.evaluation.total.substation_J()) {
-      best.best = given_best->departures_s;
-      out.evaluation = std::move(*given_best);
+  double given_substation_J = INFINITY;
+  for (std::size_t i = 0; !plan.price_starts && i < options.given_starts_s.size(); ++i) {
+    FleetEvaluation e = model.evaluate(options.given_starts_s[i]);
+    if (e.total.substation_J() < given_substation_J)
+      given_substation_J = e.total.substation_J(), s.given_start_used_J = e.used_regen_J();
+    if (e.total.substation_J() < out.evaluation.total.substation_J()) {
+      best.best = e.departures_s;
+      out.evaluation = std::move(e);
     }
   }
   out.headways_s = headways_from_departures(best.best);
