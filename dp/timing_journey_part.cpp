@@ -9,6 +9,7 @@
 #include "dp/policy_extraction.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
+#include "dp/timing_slow_run.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp::timing {
@@ -1736,11 +1737,62 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     out.binding_slack_s = solver.binding_slack_s();
     return a;
   };
-  Attempt first = attempt(false);
-  if (first.kept() || !first.banded_transitions) return std::move(first.out);
+  // A part whose every run arrives before its earliest arrival, or that asks for a time beyond
+  // the slowest run the grid solves (a fast moving start, a late stop or a high end speed): its
+  // energy rises with its time there, so the run of dp/timing_slow_run.hpp at the earliest
+  // arrival is taken when every window of the part holds on it.
+  // (fast: the search's run that arrives too early, or null; the slow run follows it up to the
+  // part's last passing point.)
+  auto slow = [&](const PartOutcome* fast) -> std::optional<PartOutcome> {
+    if (!finite(earliest_arrival_s)) return std::nullopt;
+    PartSolver checker(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
+                       false, arrival_free);
+    const bool lead = fast && !points.empty();
+    int simulations = 0;
+    std::optional<LambdaRun> run = slow_run(engine, start, end, earliest_arrival_s,
+                                            lead ? fast->run.program : physics::ControlProgram{},
+                                            lead ? points.back().s_m : 0.0, &simulations);
+    if (!run || !checker.every_window_holds(*run)) return std::nullopt;
+    PartOutcome out;
+    out.evaluations = fast ? fast->evaluations : 0;
+    out.run = std::move(*run);
+    out.met = out.holds = true;
+    out.points = points;
+    out.stretch_lambda_J_per_s.assign(points.size() + 1, NAN);
+    out.binding_sign.assign(points.size(), 0);
+    out.notes.push_back(format_text(
+        "a part needs a run slower than any time price gives (its energy rises with its time "
+        "there): it slows down by braking and coasting and then runs to its end, arriving %.3f s "
+        "after its departure (%d simulations; feasible, possibly not the least energy)",
+        out.run.sim.running_time_s, simulations));
+    return out;
+  };
+  std::optional<Attempt> first;
+  try {
+    first = attempt(false);
+  } catch (const LongTimeError& e) {
+    // (A part whose earliest arrival the grid reaches is searched with a free arrival by the
+    // caller.)
+    if (e.maximum_s() >= earliest_arrival_s) throw;
+    if (std::optional<PartOutcome> o = slow(nullptr)) return std::move(*o);
+    throw;
+  }
+  auto too_fast = [&](const PartOutcome& o) {
+    return !o.holds && end.reaches_end(o.run.sim) &&
+           o.run.sim.running_time_s < earliest_arrival_s - options.time_tolerance_s;
+  };
+  if (first->kept() || !first->banded_transitions) {
+    if (too_fast(first->out)) {
+      if (std::optional<PartOutcome> o = slow(&first->out)) return std::move(*o);
+    }
+    return std::move(first->out);
+  }
   Attempt strict = attempt(true);
-  PartOutcome& kept = strict.kept() ? strict.out : first.out;
-  kept.evaluations = first.out.evaluations + strict.out.evaluations;
+  PartOutcome& kept = strict.kept() ? strict.out : first->out;
+  kept.evaluations = first->out.evaluations + strict.out.evaluations;
+  if (too_fast(kept)) {
+    if (std::optional<PartOutcome> o = slow(&kept)) return std::move(*o);
+  }
   return std::move(kept);
 }
 

@@ -151,8 +151,13 @@ void run(const Motion& motion, Law& law, const std::vector<double>& events,
     const RouteSegment& last = route.segments().back();
     double ee = e;
     double extra = 0.0;
-    const double h = 1e-3;
+    // Millimetre Euler steps over the first metre (a run that ends nearly at rest, where the
+    // stop error decides whether it arrives), then steps of kCoarseBrakeStep_m: a run that
+    // ends moving at speed has hundreds of metres of braking to extrapolate, and only its
+    // being past the end counts.
+    constexpr double kFineBrakeReach_m = 1.0, kCoarseBrakeStep_m = 0.1;
     while (ee > 0.0 && extra < 1e4) {
+      const double h = extra < kFineBrakeReach_m ? 1e-3 : kCoarseBrakeStep_m;
       const double v = speed_from_e(ee);
       const double w = train.resistance_N(v, last.track_N_per_kN());
       const double slope = (-train.max_brake_N(v, w) - w) / train.effective_mass_kg();

@@ -252,6 +252,23 @@ bound = json.load(open(sys.argv[2]))
 assert any("latest arrival searched at" in x for x in bound["warnings"]), bound["warnings"]
 PY
 
+# Parts slower than any time price gives (dp/timing_slow_run.hpp): from 80 km/h to a stop
+# 1000 m on at 400 s (refused with exit 2 before: "above the longest running time"), and from
+# 55 km/h back to 55 km/h, exactly, at 149 s (missed, exit 1). Both are met exactly: the time
+# within 1 ms, the end speed within 0.01 km/h.
+journey slow_stop.json '[[0,0,0,80,80],[1000,400,400,0,0]]'
+journey slow_pinned.json '[[0,0,0,55,55],[1000,149,149,55,55]]'
+solve_journeys slow_stop slow_pinned
+python3 - slow_stop_out.json slow_pinned_out.json <<'PY' || fail=1
+import json, sys
+for name, t, v in zip(sys.argv[1:], (400, 149), (0, 55)):
+    j = json.load(open(name))
+    end = j["windows"][-1]
+    assert j["windows_met"] is True, (name, j["windows"])
+    assert abs(end["time_s"] - t) <= 1e-3 and abs(end["speed_kmh"] - v) <= 0.01, (name, end)
+    assert any("slower than any time price" in x for x in j["warnings"]), (name, j["warnings"])
+PY
+
 [ "$fail" -eq 0 ] && echo "timing_journey: ok"
 
 exit "$fail"

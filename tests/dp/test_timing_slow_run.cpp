@@ -1,0 +1,190 @@
+// Parts of a timing-point journey that must run slower than any time price gives
+// (dp/timing_slow_run.hpp): a fast moving start with a late stop, or a late end at a high
+// speed (a point pinning the state). Before the slow runs such journeys were missed (exit 1)
+// or refused as too slow (exit 2). Their windows are met exactly on the re-simulation, and
+// the run's traction work is checked against an independent brute force, a DP over position,
+// speed and time (every speed pair of neighbouring stages a constant-force step, times kept
+// exact per label and merged in buckets) which knows nothing of the runs' structure, and
+// against a proven lower bound.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "data/train_io.hpp"
+#include "dp/timing_journey.hpp"
+#include "physics/units.hpp"
+#include "timing_tracks.hpp"
+
+namespace ecorail::dp {
+namespace {
+
+constexpr double kLength_m = 1000.0;
+constexpr double kExactTime_s = 1e-3;
+constexpr double kExactSpeed_ms = 0.01 / 3.6;
+
+physics::Route level_track() {
+  return timing_test::rise_track(300.0, 600.0, kLength_m, 0.0, "L0", "L1");
+}
+
+// A one-part journey: leave at v0_ms, pass the end at t_s between end speeds (m/s; 0, 0: stop).
+std::vector<TimingWindow> journey(double v0_ms, double t_s, double end_min_ms, double end_max_ms) {
+  return {{0.0, 0.0, 0.0, v0_ms, v0_ms}, {kLength_m, t_s, t_s, end_min_ms, end_max_ms}};
+}
+
+const physics::SimulationResult& solved_run(const TimingJourneySolution& sol) {
+  return sol.journey.sections.at(0).run.sim;
+}
+
+// Least mechanical traction work over the level track from v0_ms to end_ms, arriving within
+// half a second of t_s: a DP over stages of ds_m and speeds on a dv_ms grid (both speeds on
+// it), each step between two speeds at a constant force within the train's limits at its mean
+// speed; per stage and speed the cheapest label of each time bucket of bucket_s, its time kept
+// exact. +infinity when no label arrives.
+double time_expanded_dp(const physics::Train& train, double v0_ms, double end_ms, double t_s,
+                        double ds_m, double dv_ms, double bucket_s) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const int stages = static_cast<int>(std::lround(kLength_m / ds_m));
+  const int speeds = static_cast<int>(std::floor(units::kmh_to_ms(80.0) / dv_ms)) + 1;
+  const int buckets = static_cast<int>(std::ceil((t_s + 1.0) / bucket_s)) + 1;
+  const double mass = train.effective_mass_kg();
+  struct Label {
+    double work_J = std::numeric_limits<double>::infinity(), t_s = 0.0;
+  };
+  std::vector<Label> now(static_cast<std::size_t>(speeds) * buckets), next(now.size());
+  auto at = [&](std::vector<Label>& layer, int j, int b) -> Label& {
+    return layer[static_cast<std::size_t>(j) * buckets + b];
+  };
+  at(now, static_cast<int>(std::lround(v0_ms / dv_ms)), 0) = {0.0, 0.0};
+  for (int stage = 0; stage < stages; ++stage) {
+    std::fill(next.begin(), next.end(), Label{});
+    for (int j = 0; j < speeds; ++j) {
+      const double v = j * dv_ms;
+      for (int b = 0; b < buckets; ++b) {
+        const Label& from = at(now, j, b);
+        if (!(from.work_J < inf)) continue;
+        for (int k = std::max(1, j - 12); k <= std::min(speeds - 1, j + 12); ++k) {
+          const double w = k * dv_ms;
+          const double mid = 0.5 * (v + w);
+          const double resistance = train.resistance_N(mid, 0.0);
+          const double force = mass * (w * w - v * v) / (2.0 * ds_m) + resistance;
+          if (force > train.max_traction_N(mid, resistance) ||
+              force < -train.max_brake_N(mid, resistance)) {
+            continue;
+          }
+          const double t = from.t_s + 2.0 * ds_m / (v + w);
+          const int nb = static_cast<int>(t / bucket_s);
+          if (nb >= buckets) continue;
+          Label& to = at(next, k, nb);
+          const double work = from.work_J + std::max(0.0, force) * ds_m;
+          if (work < to.work_J) to = {work, t};
+        }
+      }
+    }
+    std::swap(now, next);
+  }
+  double best = inf;
+  const int je = static_cast<int>(std::lround(end_ms / dv_ms));
+  for (int b = 0; b < buckets; ++b) {
+    const Label& l = at(now, je, b);
+    if (std::abs(l.t_s - t_s) <= 0.5) best = std::min(best, l.work_J);
+  }
+  return best;
+}
+
+// A lower bound on the mechanical traction work of any run over the level track from v0_ms to
+// end_ms in t_s: a run whose lowest speed is v_m is never slower than the profile
+// max(v_m, sqrt(v0^2 - 2 d s), sqrt(end^2 - 2 a (L - s))) (it cannot brake or accelerate
+// harder than the train's limits d and a), so v_m is at most the v* at which that profile takes
+// t_s; from where it runs at v_m the run must win back 1/2 m (end^2 - v_m^2). 0 when end_ms is
+// not above v*.
+double traction_lower_bound_J(const physics::Train& train, double v0_ms, double end_ms,
+                              double t_s) {
+  const double a = train.max_accel_m_s2, d = train.max_decel_m_s2;
+  auto slowest_s = [&](double v_m) {
+    double t = 0.0;
+    constexpr double kStep_m = 0.1;
+    for (double s = 0.5 * kStep_m; s < kLength_m; s += kStep_m) {
+      const double v =
+          std::max({v_m, std::sqrt(std::max(0.0, v0_ms * v0_ms - 2.0 * d * s)),
+                    std::sqrt(std::max(0.0, end_ms * end_ms - 2.0 * a * (kLength_m - s)))});
+      t += kStep_m / v;
+    }
+    return t;
+  };
+  double lo = 1e-3, hi = std::max(v0_ms, end_ms);  // slowest_s(lo) > t_s >= slowest_s(hi)
+  for (int it = 0; it < 60; ++it) {
+    const double m = 0.5 * (lo + hi);
+    (slowest_s(m) > t_s ? lo : hi) = m;
+  }
+  return std::max(0.0, 0.5 * train.effective_mass_kg() * (end_ms * end_ms - hi * hi));
+}
+
+// Journeys from a moving start whose time lies beyond every time price's run: each is met
+// exactly (the time within 1 ms, a zero-width end speed within 0.01 km/h, a stop at rest).
+TEST(TimingSlowRun, HeldBackEndsAreMetExactly) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = level_track();
+  const TimingJourneyOptions options = timing_test::coarse_timing();
+  struct Case {
+    double v0_ms, t_s, end_min_ms, end_max_ms;
+  };
+  const std::vector<Case> cases = {
+      {15.0, 120.0, 15.0, 15.0},                           // back to its own speed
+      {15.0, 250.0, 15.0, 15.0}, {15.0, 150.0, 5.6, 5.6},  // slower at the end
+      {15.0, 150.0, 19.4, 19.4},                           // faster at the end
+      {15.0, 150.0, 11.0, 19.4},                           // an end window
+      {22.0, 300.0, 0.0, 0.0},                             // a stop, late
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(testing::Message() << c.v0_ms << " m/s, " << c.t_s << " s, end " << c.end_min_ms
+                                    << "-" << c.end_max_ms << " m/s");
+    const TimingJourneySolution sol = solve_timing_journey(
+        train, track, journey(c.v0_ms, c.t_s, c.end_min_ms, c.end_max_ms), options);
+    ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+    ASSERT_TRUE(sol.windows_met);
+    const physics::SimulationResult& run = solved_run(sol);
+    EXPECT_NEAR(run.running_time_s, c.t_s, kExactTime_s);
+    if (c.end_min_ms == c.end_max_ms) {
+      EXPECT_NEAR(run.end_speed_ms, c.end_min_ms, kExactSpeed_ms);
+    } else {
+      EXPECT_GE(run.end_speed_ms, c.end_min_ms - kExactSpeed_ms);
+      EXPECT_LE(run.end_speed_ms, c.end_max_ms + kExactSpeed_ms);
+    }
+  }
+}
+
+// The same runs against the time-expanded DP (10 m, 0.2 m/s, buckets of 0.5 s), an
+// independent search with any constant force but a coarse speed step: no dearer in traction
+// work; and no cheaper than the lower bound above (where it is positive).
+TEST(TimingSlowRun, NoDearerThanATimeExpandedDpNorCheaperThanABound) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = level_track();
+  const TimingJourneyOptions options = timing_test::coarse_timing();
+  struct Case {
+    double v0_ms, t_s, end_ms;
+  };
+  for (const Case& c : std::vector<Case>{
+           {15.0, 120.0, 15.0}, {15.0, 250.0, 15.0}, {15.0, 150.0, 5.6}, {15.0, 150.0, 19.4}}) {
+    SCOPED_TRACE(testing::Message() << c.v0_ms << " m/s, " << c.t_s << " s, end " << c.end_ms);
+    const TimingJourneySolution sol =
+        solve_timing_journey(train, track, journey(c.v0_ms, c.t_s, c.end_ms, c.end_ms), options);
+    ASSERT_TRUE(sol.windows_met);
+    const double ours = solved_run(sol).energy.traction_work_J;
+    const double dp = time_expanded_dp(train, c.v0_ms, c.end_ms, c.t_s, 10.0, 0.2, 0.5);
+    const double bound = traction_lower_bound_J(train, c.v0_ms, c.end_ms, c.t_s);
+    ASSERT_TRUE(std::isfinite(dp));
+    std::printf(
+        "[ slow run ] %.1f -> %.1f m/s in %.0f s: %.1f kJ; the DP %.1f kJ (%+.2f %%), the "
+        "bound %.1f kJ\n",
+        c.v0_ms, c.end_ms, c.t_s, ours / 1e3, dp / 1e3, 100.0 * (ours / dp - 1.0), bound / 1e3);
+    EXPECT_LE(ours, dp);
+    EXPECT_GE(ours, bound);
+  }
+}
+
+}  // namespace
+}  // namespace ecorail::dp
