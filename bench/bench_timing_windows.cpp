@@ -8,7 +8,9 @@
 // or an earliest bound there, bounds a few seconds either side, a latest bound with a speed window
 // around the witness's speed, or a zero-width time with a least speed; the stop the witness's
 // time exactly or a 10 s window ending there. First arg 0: three passing points, at rest at the
-// start; 1: the same with a moving start (1 to 6 m/s); second arg: the seed. 30 journeys each
+// start; 1: the same with a moving start (1 to 6 m/s); 2: a moving start and zero-width windows
+// only (each passing point pinned in time and speed, in time alone or in speed alone, the stop
+// at the witness's time); second arg: the seed. 30 journeys each
 // (docs/ttobench.md, "Random windows"). A journey that misses a window, or whose run is more
 // than 0.1 % dearer than its witness, is printed to stderr with its windows and the solver's
 // warnings; a solve over 20 s is named there with its evaluations.
@@ -25,6 +27,7 @@
 #include "dp/section_engine.hpp"
 #include "dp/time_target.hpp"
 #include "dp/timing_journey.hpp"
+#include "tests/dp/witness_runs.hpp"
 
 namespace {
 
@@ -50,19 +53,6 @@ physics::Route rise_track() {
   return physics::Route(segs, 0.0, 1, "X0", "X1");
 }
 
-// Time and speed where a run passes s_m (linear between trace points).
-void passing(const physics::SimulationResult& sim, double s_m, double* t_s, double* v_ms) {
-  const auto& tr = sim.trace;
-  for (std::size_t k = 1; k < tr.size(); ++k) {
-    if (tr[k].s_m < s_m) continue;
-    const double w = (s_m - tr[k - 1].s_m) / (tr[k].s_m - tr[k - 1].s_m);
-    *t_s = tr[k - 1].t_s + w * (tr[k].t_s - tr[k - 1].t_s);
-    *v_ms = tr[k - 1].v_ms + w * (tr[k].v_ms - tr[k - 1].v_ms);
-    return;
-  }
-  *t_s = *v_ms = NAN;
-}
-
 struct Journey {
   std::vector<TimingWindow> windows;
   double witness_J = 0.0;
@@ -70,37 +60,37 @@ struct Journey {
 
 // A random journey around a random witness run (see the file's comment); false for a witness
 // that does not reach the stop.
-bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng, bool moving,
+bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng, int mode,
                     Journey* out) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<double> s;
-  for (int k = 0; k < kPassingPoints; ++k) {
-    s.push_back(kLength_m * (k + 0.2 + 0.6 * u(rng)) / (kPassingPoints + 1));
+  ecorail::dp::timing_test::WitnessRun witness;
+  if (!ecorail::dp::timing_test::random_witness(engine, rng, mode >= 1, kPassingPoints, &witness)) {
+    return false;
   }
-  const double v0 = moving ? 1.0 + 5.0 * u(rng) : 0.0;
-  physics::ControlProgram p = {{0.0, physics::Control::MaxTraction},
-                               {(0.3 + 0.5 * u(rng)) * s[0], physics::Control::Coast}};
-  for (int k = 0; k < kPassingPoints; ++k) {
-    const double a = s[k], b = k + 1 < kPassingPoints ? s[k + 1] : kLength_m;
-    const double y = a + (0.1 + 0.4 * u(rng)) * (b - a);
-    p.push_back({y, physics::Control::MaxTraction});
-    const bool hold = u(rng) < 0.5;
-    p.push_back(
-        {y + 30.0 + 80.0 * u(rng), hold ? physics::Control::Hold : physics::Control::Coast});
-    if (hold) p.push_back({y + 150.0 + 100.0 * u(rng), physics::Control::Coast});
-  }
-  for (std::size_t i = 1; i < p.size(); ++i) {
-    if (!(p[i].from_m > p[i - 1].from_m)) return false;
-  }
-  if (p.back().from_m >= kLength_m - 50.0) return false;
-  const physics::SimulationResult w = engine.simulate(p, {0.0, v0}, 1.0);
-  if (!ecorail::dp::run_arrives(w)) return false;
+  const std::vector<double>& s = witness.points_m;
+  const double v0 = witness.start_speed_ms;
+  const physics::SimulationResult& w = witness.sim;
   out->witness_J = w.energy.traction_work_J;
   out->windows = {{0.0, 0.0, 0.0, v0, v0}};
   for (int k = 0; k < kPassingPoints; ++k) {
     double t = NAN, v = NAN;
-    passing(w, s[k], &t, &v);
+    ecorail::dp::timing_test::passing(w, s[k], &t, &v);
     TimingWindow pw{s[k], -kOpen, kOpen, -kOpen, kOpen};
+    if (mode == 2) {
+      // Zero-width windows only: the time and the speed, the time alone, or the speed alone.
+      switch (std::uniform_int_distribution<int>(0, 2)(rng)) {
+        case 0:
+          pw = {s[k], t, t, v, v};
+          break;
+        case 1:
+          pw.earliest_s = pw.latest_s = t;
+          break;
+        default:
+          pw.min_speed_ms = pw.max_speed_ms = v;
+      }
+      out->windows.push_back(pw);
+      continue;
+    }
     switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
       case 0:
         pw.earliest_s = pw.latest_s = t;
@@ -125,7 +115,8 @@ bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng,
     out->windows.push_back(pw);
   }
   const double arrive = w.running_time_s;
-  out->windows.push_back({kLength_m, u(rng) < 0.5 ? arrive : arrive - 10.0, arrive, 0.0, 0.0});
+  const double earliest = mode == 2 || u(rng) < 0.5 ? arrive : arrive - 10.0;
+  out->windows.push_back({kLength_m, earliest, arrive, 0.0, 0.0});
   return true;
 }
 
@@ -149,7 +140,7 @@ ecorail::dp::TimingJourneyOptions coarse_options() {
 // The journeys are drawn with the coarse grid's engine (the same journeys whatever grid solves
 // them) and solved with `solving`.
 void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourneyOptions& solving) {
-  const bool moving = state.range(0) == 1;
+  const int mode = static_cast<int>(state.range(0));
   const physics::Train train = ecorail::data::default_train();
   const physics::Route track = rise_track();
   const ecorail::dp::SectionEngine engine(train, track, coarse_options().engine);
@@ -161,7 +152,7 @@ void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourne
     worst_ratio = slowest_s = 0.0;
     for (int made = 0; made < kJourneys;) {
       Journey j;
-      if (!random_journey(engine, rng, moving, &j)) continue;
+      if (!random_journey(engine, rng, mode, &j)) continue;
       ++made;
       const auto t0 = std::chrono::steady_clock::now();
       const ecorail::dp::TimingJourneySolution sol =
@@ -211,7 +202,8 @@ void BM_RandomTimingWindowsDefaultGrid(benchmark::State& state) {
 }
 // {start, seed}: the first two samples are the ones the changes of docs/ttobench.md were made
 // on, the next two were drawn after them (out of sample), the next two after the transition
-// bands, the last two after the split phases (docs/ttobench.md).
+// bands, the next two after the split phases, the last two (start 2: zero-width windows
+// only) after the speed pins (docs/ttobench.md).
 BENCHMARK(BM_RandomTimingWindows)
     ->Args({0, 2})
     ->Args({1, 3})
@@ -221,15 +213,20 @@ BENCHMARK(BM_RandomTimingWindows)
     ->Args({1, 22})
     ->Args({0, 31})
     ->Args({1, 32})
+    ->Args({2, 41})
+    ->Args({2, 42})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 // {start, seed} at the default grid: 51 and 52 were first run with a one-off copy of this bench
-// (stop 43), 61 and 62 drawn on 2026-12-06.
+// (stop 43), 61 and 62 drawn on 2026-12-06; 71 and 72 zero-width windows only (start 2, drawn
+// on 2026-12-06 after the speed pins, docs/ttobench.md, "One speed at a free time").
 BENCHMARK(BM_RandomTimingWindowsDefaultGrid)
     ->Args({0, 51})
     ->Args({1, 52})
     ->Args({0, 61})
     ->Args({1, 62})
+    ->Args({2, 71})
+    ->Args({2, 72})
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 

@@ -11,6 +11,7 @@
 #include "dp/text_format.hpp"
 #include "dp/timing_journey_feasibility.hpp"
 #include "dp/timing_journey_part.hpp"
+#include "dp/timing_speed_pins.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp {
@@ -456,13 +457,13 @@ void fill_totals(const Journey& jy, bool all_met, bool all_arrive, const std::st
 
 }  // namespace
 
-TimingJourneySolution solve_timing_journey(const physics::Train& train, const physics::Route& track,
-                                           const std::vector<TimingWindow>& windows,
-                                           const TimingJourneyOptions& options,
-                                           const std::string& id) {
+namespace {
+
+// The journey as its windows ask (steps 1-7).
+TimingJourneySolution solve_windows(const physics::Train& train, const physics::Route& track,
+                                    const std::vector<TimingWindow>& windows,
+                                    const TimingJourneyOptions& options, const std::string& id) {
   const auto t0 = Clock::now();
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument(why);
   check_structure(windows, track.length_m());
   Journey jy(windows, options);
   TimingJourneySolution out;
@@ -485,6 +486,30 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
       record_windows(jy, part_points, binding_sign, bind_slack, out) && all_arrive;  // step 6
   fill_totals(jy, all_met, all_arrive, id, t0, out);                                 // step 7
   return out;
+}
+
+}  // namespace
+
+TimingJourneySolution solve_timing_journey(const physics::Train& train, const physics::Route& track,
+                                           const std::vector<TimingWindow>& windows,
+                                           const TimingJourneyOptions& options,
+                                           const std::string& id) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  const auto solve = [&](const std::vector<TimingWindow>& w) {
+    return solve_windows(train, track, w, options, id);
+  };
+  // The times of points asking for one speed are searched on a grid no finer than 10 m x
+  // 0.5 km/h (dp/timing_speed_pins.hpp); the journey they give is solved on the asked grid.
+  TimingJourneyOptions trial = options;
+  trial.engine.grid.ds_m = std::max(options.engine.grid.ds_m, 10.0);
+  trial.engine.grid.dv_kmh = std::max(options.engine.grid.dv_kmh, 0.5);
+  trial.engine.grid.substep_m = std::max(options.engine.grid.substep_m, 5.0);
+  trial.progress = nullptr;
+  const auto solve_trial = [&](const std::vector<TimingWindow>& w) {
+    return solve_windows(train, track, w, trial, id);
+  };
+  return with_speeds_pinned(windows, solve(windows), solve, solve_trial);
 }
 
 }  // namespace ecorail::dp

@@ -9,7 +9,7 @@
 #include "dp/policy_extraction.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
-#include "dp/timing_slow_run.hpp"
+#include "dp/timing_family_run.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp::timing {
@@ -46,6 +46,10 @@ bool EndCheck::operator()(const physics::SimulationResult& sim) const {
 namespace {
 
 constexpr double kMaxTrim_s = 1.0;
+// Parts longer than this are not polished by runs of a few phases (dp/timing_family_run.hpp):
+// one hold over kilometres of a real line meets its limits and gradients, and each of the
+// searches' hundreds of simulations costs more.
+constexpr double kFamilyReach_m = 5000.0;
 // RK4 step of a trim's search runs (trim_switch); the result is checked on a fine run.
 constexpr double kCoarseTrimStep_m = 0.5;
 
@@ -1739,7 +1743,7 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   };
   // A part whose every run arrives before its earliest arrival, or that asks for a time beyond
   // the slowest run the grid solves (a fast moving start, a late stop or a high end speed): its
-  // energy rises with its time there, so the run of dp/timing_slow_run.hpp at the earliest
+  // energy rises with its time there, so the run of dp/timing_family_run.hpp at the earliest
   // arrival is taken when every window of the part holds on it.
   // (fast: the search's run that arrives too early, or null; the slow run follows it up to the
   // part's last passing point.)
@@ -1749,9 +1753,10 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
                        false, arrival_free);
     const bool lead = fast && !points.empty();
     int simulations = 0;
-    std::optional<LambdaRun> run = slow_run(engine, start, end, earliest_arrival_s,
-                                            lead ? fast->run.program : physics::ControlProgram{},
-                                            lead ? points.back().s_m : 0.0, &simulations);
+    std::optional<LambdaRun> run =
+        family_run(engine, start, end, earliest_arrival_s,
+                   lead ? fast->run.program : physics::ControlProgram{},
+                   lead ? points.back().s_m : 0.0, FamilySet::Slowing, &simulations);
     if (!run || !checker.every_window_holds(*run)) return std::nullopt;
     PartOutcome out;
     out.evaluations = fast ? fast->evaluations : 0;
@@ -1781,19 +1786,38 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     return !o.holds && end.reaches_end(o.run.sim) &&
            o.run.sim.running_time_s < earliest_arrival_s - options.time_tolerance_s;
   };
-  if (first->kept() || !first->banded_transitions) {
-    if (too_fast(first->out)) {
-      if (std::optional<PartOutcome> o = slow(&first->out)) return std::move(*o);
+  // A part that ends at one speed (a point pinning the state, or a zero-width end window): its
+  // grid run, moved onto that speed on the simulator, can cost more than a run of a few phases
+  // after its last passing point (dp/timing_family_run.hpp); the cheaper is kept where every
+  // window holds on it. Parts longer than kFamilyReach_m are left as they are.
+  auto polish_one_speed_end = [&](PartOutcome& o) {
+    if (!end.moving || end.min_ms != end.max_ms || !o.holds ||
+        engine.route().length_m() > kFamilyReach_m) {
+      return;
     }
-    return std::move(first->out);
+    PartSolver checker(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
+                       false, arrival_free);
+    int simulations = 0;
+    std::optional<LambdaRun> run =
+        family_run(engine, start, end, o.run.sim.running_time_s, o.run.program,
+                   points.empty() ? 0.0 : points.back().s_m, FamilySet::Any, &simulations);
+    if (run && run->cost_J < o.run.cost_J && checker.every_window_holds(*run)) {
+      o.run = std::move(*run);
+    }
+  };
+  PartOutcome* kept = &first->out;
+  Attempt strict;
+  if (!first->kept() && first->banded_transitions) {
+    strict = attempt(true);
+    const int evaluations = first->out.evaluations + strict.out.evaluations;
+    if (strict.kept()) kept = &strict.out;
+    kept->evaluations = evaluations;
   }
-  Attempt strict = attempt(true);
-  PartOutcome& kept = strict.kept() ? strict.out : first->out;
-  kept.evaluations = first->out.evaluations + strict.out.evaluations;
-  if (too_fast(kept)) {
-    if (std::optional<PartOutcome> o = slow(&kept)) return std::move(*o);
+  if (too_fast(*kept)) {
+    if (std::optional<PartOutcome> o = slow(kept)) return std::move(*o);
   }
-  return std::move(kept);
+  polish_one_speed_end(*kept);
+  return std::move(*kept);
 }
 
 }  // namespace ecorail::dp::timing

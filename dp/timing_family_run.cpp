@@ -1,8 +1,9 @@
-#include "dp/timing_slow_run.hpp"
+#include "dp/timing_family_run.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 namespace ecorail::dp::timing {
 
@@ -18,8 +19,8 @@ using physics::SimulationResult;
 constexpr double kSearchStep_m = 2.0;
 // A hold slower than this is a crawl the family does not search (a grid's slowest speeds).
 constexpr double kLowestHold_ms = 0.5;
-// Hold starts tried along the part before the bisection (the first that is slow enough
-// brackets the time).
+// First-phase ends tried along the stretch before the root search (two neighbours whose times
+// lie either side of the target bracket it).
 constexpr int kScanPoints = 12;
 constexpr int kBisections = 60;
 // Bisections stop at brackets this narrow (m): a tenth of a millimetre moves a run's end speed
@@ -96,11 +97,12 @@ struct Family {
   bool hold_at_goal;
 };
 
-class SlowRunSearch {
+class FamilySearch {
  public:
-  SlowRunSearch(const SectionEngine& engine, const StartState& start, const EndCheck& end,
-                double target_s, const physics::ControlProgram& lead, double from_m,
-                int* evaluations)
+  // The families follow `lead` before from_m.
+  FamilySearch(const SectionEngine& engine, const StartState& start, const EndCheck& end,
+               double target_s, const physics::ControlProgram& lead, double from_m,
+               int* evaluations)
       : engine_(engine),
         start_(start),
         end_(end),
@@ -117,13 +119,19 @@ class SlowRunSearch {
   // hold for the traction it costs (the speed it loses is won back for what the hold would
   // have spent), so the families that coast down after braking usually win; a hold is needed
   // where a coast would run on too fast or too slow.
-  std::optional<LambdaRun> search() {
-    if (start_.speed_ms < kLowestHold_ms) return std::nullopt;
+  std::optional<LambdaRun> search(FamilySet set) {
+    std::vector<Family> families;
+    if (set == FamilySet::Any) {
+      families = {{Control::MaxTraction, Control::Coast, false},
+                  {Control::MaxTraction, Control::Hold, false}};
+    }
+    // (A run at rest at from_m has no slowing family: each is refused at its hold start.)
+    families.insert(families.end(), {{Control::Coast, Control::Hold, false},
+                                     {Control::MaxBrake, Control::Hold, false},
+                                     {Control::MaxBrake, Control::Coast, false},
+                                     {Control::MaxBrake, Control::Coast, true}});
     std::optional<LambdaRun> best;
-    for (const Family& family : {Family{Control::Coast, Control::Hold, false},
-                                 Family{Control::MaxBrake, Control::Hold, false},
-                                 Family{Control::MaxBrake, Control::Coast, false},
-                                 Family{Control::MaxBrake, Control::Coast, true}}) {
+    for (const Family& family : families) {
       if (family.hold_at_goal && !end_.moving) continue;
       std::optional<LambdaRun> run = search(family);
       if (run && (!best || run->cost_J < best->cost_J)) best = std::move(run);
@@ -194,7 +202,8 @@ class SlowRunSearch {
 
   // The s1 in [lo, hi] whose finished run arrives at the target (within the stage's
   // time_tol_s); NaN when none does. scan: look for the bracket along [lo, hi] first (the
-  // running time grows with s1, and is infinite where no last phase finishes the run).
+  // running time is monotone in s1, rising for a first phase that slows the run and falling
+  // for traction, and infinite where no last phase finishes the run).
   double s1_for_time(const Family& family, const Stage& stage, double lo, double hi, bool scan) {
     auto late_s = [&](double s1) {
       const std::optional<Candidate> c = finish(family, s1, stage);
@@ -204,13 +213,14 @@ class SlowRunSearch {
     // (No narrowest bracket: a hold after braking hard moves the time by a minute per metre of
     // its start.)
     if (!scan) return find_root(late_s, lo, hi, done);
-    double prev = lo;
+    double prev = lo, e_prev = NAN;
     for (int k = 0; k <= kScanPoints; ++k) {
       const double s1 = lo + (hi - lo) * k / kScanPoints;
       const double e = late_s(s1);
       if (done(e)) return s1;
-      if (e > 0.0) return k == 0 ? NAN : find_root(late_s, prev, s1, done);
+      if (k > 0 && (e_prev > 0.0) != (e > 0.0)) return find_root(late_s, prev, s1, done);
       prev = s1;
+      e_prev = e;
     }
     return NAN;
   }
@@ -307,11 +317,11 @@ class SlowRunSearch {
 
 }  // namespace
 
-std::optional<LambdaRun> slow_run(const SectionEngine& engine, const StartState& start,
-                                  const EndCheck& end, double target_s,
-                                  const physics::ControlProgram& lead, double from_m,
-                                  int* evaluations) {
-  return SlowRunSearch(engine, start, end, target_s, lead, from_m, evaluations).search();
+std::optional<LambdaRun> family_run(const SectionEngine& engine, const StartState& start,
+                                    const EndCheck& end, double target_s,
+                                    const physics::ControlProgram& lead, double from_m,
+                                    FamilySet set, int* evaluations) {
+  return FamilySearch(engine, start, end, target_s, lead, from_m, evaluations).search(set);
 }
 
 }  // namespace ecorail::dp::timing

@@ -1,0 +1,37 @@
+// Passing points that ask for one speed at a time they leave free (a speed window of zero
+// width, a time window of some width), for the timing-point journey solver
+// (dp/timing_journey.hpp). The part search holds such a window by a speed band on its grid, a
+// band one speed step wide either side that the run is then moved into on the simulator; with
+// two such points in a part, or one before a point pinning the state, that run could cost
+// 5-30 % more than a feasible run through the same windows (random journeys around witness
+// runs, docs/ttobench.md, "One speed at a free time"). Such a point is the same as a point
+// pinning the state once its time is known, and a point pinning the state splits the journey
+// into parts that couple only through that time, as a stop does. So each is pinned in turn,
+// its time chosen by golden section between the times the run passes the points either side
+// (each evaluation one solve of the part that holds it, from its departure), and the journey
+// is kept so when it costs less than the plain search's run.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "dp/timing_journey.hpp"
+
+namespace ecorail::dp::timing {
+
+// Whether w asks for one speed above 0 at a time it leaves free.
+bool asks_one_speed_at_a_free_time(const TimingWindow& w);
+
+using JourneySolve = std::function<TimingJourneySolution(const std::vector<TimingWindow>&)>;
+
+// plain is `windows` solved (by solve). Where windows has passing points that ask for one
+// speed at a free time (at most kMaxSpeedPins, on a journey of at most kSpeedPinReach_m), the
+// journey with them pinned as above, when every window holds on it and it costs less than
+// plain; plain otherwise. Its windows are reported as asked, its evaluations and wall time
+// count every solve.
+// trial_solve solves the golden section's trials (a coarser grid).
+TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& windows,
+                                         TimingJourneySolution plain, const JourneySolve& solve,
+                                         const JourneySolve& trial_solve);
+
+}  // namespace ecorail::dp::timing
