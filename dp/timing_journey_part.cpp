@@ -1741,6 +1741,12 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     out.binding_slack_s = solver.binding_slack_s();
     return a;
   };
+  // Whether every window of the part holds on a run found outside the price search.
+  auto holds_on = [&](const LambdaRun& run) {
+    return PartSolver(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
+                      false, arrival_free)
+        .every_window_holds(run);
+  };
   // A part whose every run arrives before its earliest arrival, or that asks for a time beyond
   // the slowest run the grid solves (a fast moving start, a late stop or a high end speed): its
   // energy rises with its time there, so the run of dp/timing_family_run.hpp at the earliest
@@ -1749,15 +1755,13 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   // part's last passing point.)
   auto slow = [&](const PartOutcome* fast) -> std::optional<PartOutcome> {
     if (!finite(earliest_arrival_s)) return std::nullopt;
-    PartSolver checker(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
-                       false, arrival_free);
     const bool lead = fast && !points.empty();
     int simulations = 0;
     std::optional<LambdaRun> run =
         family_run(engine, start, end, earliest_arrival_s,
                    lead ? fast->run.program : physics::ControlProgram{},
                    lead ? points.back().s_m : 0.0, FamilySet::Slowing, &simulations);
-    if (!run || !checker.every_window_holds(*run)) return std::nullopt;
+    if (!run || !holds_on(*run)) return std::nullopt;
     PartOutcome out;
     out.evaluations = fast ? fast->evaluations : 0;
     out.run = std::move(*run);
@@ -1795,13 +1799,11 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         engine.route().length_m() > kFamilyReach_m) {
       return;
     }
-    PartSolver checker(engine, start, end, target_s, earliest_arrival_s, points, windows, options,
-                       false, arrival_free);
     int simulations = 0;
     std::optional<LambdaRun> run =
         family_run(engine, start, end, o.run.sim.running_time_s, o.run.program,
                    points.empty() ? 0.0 : points.back().s_m, FamilySet::Any, &simulations);
-    if (run && run->cost_J < o.run.cost_J && checker.every_window_holds(*run)) {
+    if (run && run->cost_J < o.run.cost_J && holds_on(*run)) {
       o.run = std::move(*run);
     }
   };

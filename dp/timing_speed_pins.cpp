@@ -79,7 +79,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
         const double c = cost_of(s);
         if (c < best_cost) best_cost = c, best_x = x;
         return c;
-      } catch (const WindowInfeasibleError&) {
+      } catch (const TimeRequestError&) {  // a time this run cannot take (or too slow)
         return kInf;
       }
     };
@@ -89,7 +89,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
     w[i] = {w[i].position_m, best_x, best_x, w[i].min_speed_ms, w[i].max_speed_ms};
     try {
       pinned = solve(w);
-    } catch (const WindowInfeasibleError&) {
+    } catch (const TimeRequestError&) {
       return plain;
     }
     evaluations += pinned->summary.evaluations;
