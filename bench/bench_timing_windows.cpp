@@ -71,26 +71,15 @@ bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng,
   const double v0 = witness.start_speed_ms;
   const physics::SimulationResult& w = witness.sim;
   out->witness_J = w.energy.traction_work_J;
+  if (mode == 2) {
+    out->windows = ecorail::dp::timing_test::zero_width_windows(witness, rng);
+    return true;
+  }
   out->windows = {{0.0, 0.0, 0.0, v0, v0}};
   for (int k = 0; k < kPassingPoints; ++k) {
     double t = NAN, v = NAN;
     ecorail::dp::timing_test::passing(w, s[k], &t, &v);
     TimingWindow pw{s[k], -kOpen, kOpen, -kOpen, kOpen};
-    if (mode == 2) {
-      // Zero-width windows only: the time and the speed, the time alone, or the speed alone.
-      switch (std::uniform_int_distribution<int>(0, 2)(rng)) {
-        case 0:
-          pw = {s[k], t, t, v, v};
-          break;
-        case 1:
-          pw.earliest_s = pw.latest_s = t;
-          break;
-        default:
-          pw.min_speed_ms = pw.max_speed_ms = v;
-      }
-      out->windows.push_back(pw);
-      continue;
-    }
     switch (std::uniform_int_distribution<int>(0, 5)(rng)) {
       case 0:
         pw.earliest_s = pw.latest_s = t;
@@ -115,8 +104,7 @@ bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng,
     out->windows.push_back(pw);
   }
   const double arrive = w.running_time_s;
-  const double earliest = mode == 2 || u(rng) < 0.5 ? arrive : arrive - 10.0;
-  out->windows.push_back({kLength_m, earliest, arrive, 0.0, 0.0});
+  out->windows.push_back({kLength_m, u(rng) < 0.5 ? arrive : arrive - 10.0, arrive, 0.0, 0.0});
   return true;
 }
 

@@ -9,7 +9,9 @@
 // into parts that couple only through that time, as a stop does. So each is pinned in turn,
 // its time chosen by golden section between the times the run passes the points either side
 // (each evaluation one solve of the part that holds it, from its departure), and the journey
-// is kept so when it costs less than the plain search's run.
+// is kept so when it costs less than the plain search's run. Where the plain search misses a
+// window, a point that asks for one time at a speed it leaves free is pinned the same way, its
+// speed searched within half the run's speed there either side.
 #pragma once
 
 #include <functional>
@@ -21,15 +23,17 @@ namespace ecorail::dp::timing {
 
 // Whether w asks for one speed above 0 at a time it leaves free.
 bool asks_one_speed_at_a_free_time(const TimingWindow& w);
+// Whether w asks for one time at a speed it leaves free (a passing point).
+bool asks_one_time_at_a_free_speed(const TimingWindow& w);
 
 using JourneySolve = std::function<TimingJourneySolution(const std::vector<TimingWindow>&)>;
 
 // plain is `windows` solved (by solve). Where windows has passing points that ask for one
-// speed at a free time (at most kMaxSpeedPins, on a journey of at most kSpeedPinReach_m), the
-// journey with them pinned as above, when every window holds on it and it costs less than
-// plain; plain otherwise. Its windows are reported as asked, its evaluations and wall time
-// count every solve.
-// trial_solve solves the golden section's trials (a coarser grid).
+// speed at a free time, or (plain missing a window) one time at a free speed (at most
+// kMaxSpeedPins, on a journey of at most kSpeedPinReach_m), the journey with them pinned as
+// above, when every window holds on it and it costs less than plain; plain otherwise. Its windows
+// are reported as asked, its evaluations and wall time count every solve. trial_solve solves the
+// golden section's trials (a coarser grid).
 TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& windows,
                                          TimingJourneySolution plain, const JourneySolve& solve,
                                          const JourneySolve& trial_solve);

@@ -4,18 +4,22 @@
 // journey the bench prints can be rebuilt in a test from the same seed.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
 #include "dp/section_engine.hpp"
 #include "dp/time_target.hpp"
 #include "physics/simulator.hpp"
+#include "physics/timing_window.hpp"
 
 namespace ecorail::dp::timing_test {
 
 struct WitnessRun {
   std::vector<double> points_m;  // the passing points, ascending
   double start_speed_ms = 0.0;
+  double length_m = 0.0;          // the route's, where the run stops
   physics::SimulationResult sim;  // at a 1 m step on the engine's route, to rest at its end
 };
 
@@ -47,6 +51,7 @@ inline bool random_witness(const SectionEngine& engine, std::mt19937& rng, bool 
   if (p.back().from_m >= length_m - 50.0) return false;
   out->points_m = s;
   out->start_speed_ms = v0;
+  out->length_m = length_m;
   out->sim = engine.simulate(p, {0.0, v0}, 1.0);
   return run_arrives(out->sim);
 }
@@ -62,6 +67,33 @@ inline void passing(const physics::SimulationResult& sim, double s_m, double* t_
     *v_ms = tr[k - 1].v_ms + w * (tr[k].v_ms - tr[k - 1].v_ms);
     return;
   }
+}
+
+// Zero-width windows around a witness (bench/bench_timing_windows.cpp's start 2): its start
+// speed at 0 m, each passing point at random pinned in time and speed, in time alone or in
+// speed alone, and the stop at the witness's time.
+inline std::vector<physics::TimingWindow> zero_width_windows(const WitnessRun& witness,
+                                                             std::mt19937& rng) {
+  const double open = std::numeric_limits<double>::infinity();
+  const double v0 = witness.start_speed_ms;
+  std::vector<physics::TimingWindow> windows = {{0.0, 0.0, 0.0, v0, v0}};
+  for (const double s : witness.points_m) {
+    double t = NAN, v = NAN;
+    passing(witness.sim, s, &t, &v);
+    switch (std::uniform_int_distribution<int>(0, 2)(rng)) {
+      case 0:
+        windows.push_back({s, t, t, v, v});
+        break;
+      case 1:
+        windows.push_back({s, t, t, -open, open});
+        break;
+      default:
+        windows.push_back({s, -open, open, v, v});
+    }
+  }
+  const double arrive = witness.sim.running_time_s;
+  windows.push_back({witness.length_m, arrive, arrive, 0.0, 0.0});
+  return windows;
 }
 
 }  // namespace ecorail::dp::timing_test
