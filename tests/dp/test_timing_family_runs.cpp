@@ -200,11 +200,15 @@ TEST(TimingSlowRun, NoDearerThanATimeExpandedDpNorCheaperThanABound) {
 // that stop 48's solver missed (the eighth) or ran 4.9-5.0 % dearer than their witness (the
 // seventh and the eleventh): every window now holds, and each run is no dearer than its
 // witness (a feasible run of the same journey).
-TEST(TimingZeroWidth, WindowsAroundWitnessRunsAreMetNoDearerThanTheWitness) {
+class TimingZeroWidth : public testing::Test {
+ protected:
   const physics::Train train = data::default_train();
   const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
   const TimingJourneyOptions options = timing_test::coarse_timing();
-  const SectionEngine engine(train, track, options.engine);
+  const SectionEngine engine{train, track, options.engine};
+};
+
+TEST_F(TimingZeroWidth, WindowsAroundWitnessRunsAreMetNoDearerThanTheWitness) {
   std::mt19937 rng(3);
   for (int made = 0; made < 11;) {
     timing_test::WitnessRun witness;
@@ -226,11 +230,7 @@ TEST(TimingZeroWidth, WindowsAroundWitnessRunsAreMetNoDearerThanTheWitness) {
 // misses the first time by 0.8 s; the time points' speeds are pinned by golden section
 // (dp/timing_speed_pins.hpp) and every window then holds, the zero-width ones to 1 ms and
 // 0.01 km/h.
-TEST(TimingZeroWidth, TimesAtFreeSpeedsBeforeAPinnedStateAreMet) {
-  const physics::Train train = data::default_train();
-  const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
-  const TimingJourneyOptions options = timing_test::coarse_timing();
-  const SectionEngine engine(train, track, options.engine);
+TEST_F(TimingZeroWidth, TimesAtFreeSpeedsBeforeAPinnedStateAreMet) {
   std::mt19937 rng(41);
   timing_test::WitnessRun witness;
   while (!timing_test::random_witness(engine, rng, true, 3, &witness)) {
