@@ -66,7 +66,10 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
   std::vector<TimingWindow> w = windows;
   std::optional<TimingJourneySolution> pinned;  // the whole journey with every point pinned so far
   int evaluations = 0;
-  for (const auto& [i, by_speed] : pins) {
+  for (const auto& pin : pins) {
+    // (Named copies, not a structured binding: the lambdas below capture them.)
+    const int i = pin.first;
+    const bool by_speed = pin.second;
     const TimingJourneySolution& reference = pinned ? *pinned : plain;
     // The part that holds i, solved alone from its departure in the reference: the other
     // parts do not change with i's time or speed.
