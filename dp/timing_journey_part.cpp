@@ -1804,7 +1804,17 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         family_run(engine, start, end, o.run.sim.running_time_s, o.run.program,
                    points.empty() ? 0.0 : points.back().s_m, FamilySet::Any, &simulations);
     if (run && run->cost_J < o.run.cost_J && holds_on(*run)) {
+      const double saved_J = o.run.cost_J - run->cost_J;
       o.run = std::move(*run);
+      // The prices and binding sides were those of the grid's run, which is no longer the
+      // part's: they are cleared, as for a slow run, and the replacement is said.
+      o.stretch_lambda_J_per_s.assign(o.points.size() + 1, NAN);
+      o.binding_sign.assign(o.points.size(), 0);
+      o.notes.push_back(format_text(
+          "a part that ends at one speed is run by a few phases after its last passing point, "
+          "%.1f kJ cheaper than the grid's run moved onto that speed (%d simulations; feasible, "
+          "possibly not the least energy; its time prices are not reported)",
+          saved_J / 1e3, simulations));
     }
   };
   PartOutcome* kept = &first->out;

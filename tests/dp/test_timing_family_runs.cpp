@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <random>
@@ -162,6 +163,37 @@ TEST(TimingSlowRun, HeldBackEndsAreMetExactly) {
       EXPECT_LE(run.end_speed_ms, c.end_max_ms + kExactSpeed_ms);
     }
   }
+}
+
+// A part that ends at one speed whose grid run the family runs beat (the one-speed end's
+// polish replaces its run after its last passing point): the time prices of the grid's run no
+// longer describe the reported run, so none is reported (NaN), and a warning says why.
+// Journeys from rest to exactly a speed at exactly a time; at least one must be polished, or
+// the test checks nothing.
+TEST(TimingOneSpeedEnd, APolishedPartReportsNoPricesOfTheRunItReplaced) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = level_track();
+  const TimingJourneyOptions options = timing_test::coarse_timing();
+  int polished = 0;
+  for (const double t_s : {80.0, 100.0, 130.0}) {
+    for (const double end_ms : {8.0, 12.0, 16.0}) {
+      SCOPED_TRACE(testing::Message() << t_s << " s, " << end_ms << " m/s");
+      const TimingJourneySolution sol =
+          solve_timing_journey(train, track, journey(0.0, t_s, end_ms, end_ms), options);
+      ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+      ASSERT_TRUE(sol.windows_met);
+      EXPECT_NEAR(solved_run(sol).end_speed_ms, end_ms, kExactSpeed_ms);
+      const bool said = std::any_of(
+          sol.summary.warnings.begin(), sol.summary.warnings.end(),
+          [](const std::string& w) { return w.find("run by a few phases") != std::string::npos; });
+      if (!said) continue;
+      ++polished;
+      for (const double lambda : sol.parts.at(0).stretch_lambda_J_per_s) {
+        EXPECT_TRUE(std::isnan(lambda)) << lambda;
+      }
+    }
+  }
+  EXPECT_GT(polished, 0);
 }
 
 // The same runs against the time-expanded DP (10 m, 0.2 m/s, buckets of 0.5 s), an
