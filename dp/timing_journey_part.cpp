@@ -10,6 +10,7 @@
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
 #include "dp/timing_family_run.hpp"
+#include "dp/timing_switch_descent.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::dp::timing {
@@ -50,6 +51,14 @@ constexpr double kMaxTrim_s = 1.0;
 // one hold over kilometres of a real line meets its limits and gradients, and each of the
 // searches' hundreds of simulations costs more.
 constexpr double kFamilyReach_m = 5000.0;
+// A descent on a run's switches replaces it when it saves at least this fraction of its cost
+// (a smaller saving is not worth losing the run's time prices for).
+constexpr double kDescentGain = 1e-5;
+// A phase added before a part's end for the descent to grow (m from the end).
+constexpr double kEndPhase_m = 5.0;
+// Re-simulations all the descents of one part may take (a short part's run takes a fraction
+// of a millisecond, one of 5 km a few).
+constexpr int kDescentSimulations = 3000;
 // RK4 step of a trim's search runs (trim_switch); the result is checked on a fine run.
 constexpr double kCoarseTrimStep_m = 0.5;
 
@@ -1799,23 +1808,93 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         engine.route().length_m() > kFamilyReach_m) {
       return;
     }
+    const double from_m = points.empty() ? 0.0 : points.back().s_m;
+    const double grid_cost_J = o.run.cost_J;
     int simulations = 0;
-    std::optional<LambdaRun> run =
-        family_run(engine, start, end, o.run.sim.running_time_s, o.run.program,
-                   points.empty() ? 0.0 : points.back().s_m, FamilySet::Any, &simulations);
-    if (run && run->cost_J < o.run.cost_J && holds_on(*run)) {
-      const double saved_J = o.run.cost_J - run->cost_J;
-      o.run = std::move(*run);
-      // The prices and binding sides were those of the grid's run, which is no longer the
-      // part's: they are cleared, as for a slow run, and the replacement is said.
-      o.stretch_lambda_J_per_s.assign(o.points.size() + 1, NAN);
-      o.binding_sign.assign(o.points.size(), 0);
-      o.notes.push_back(format_text(
-          "a part that ends at one speed is run by a few phases after its last passing point, "
-          "%.1f kJ cheaper than the grid's run moved onto that speed (%d simulations; feasible, "
-          "possibly not the least energy; its time prices are not reported)",
-          saved_J / 1e3, simulations));
+    bool replaced = false;
+    // Each shape, the grid's (its phases) and the families' (the few phases a level track
+    // asks for), and each grown by one phase, descended on its switches
+    // (dp/timing_switch_descent.hpp); then the cheapest grown by one more phase and descended
+    // again. The descent cannot add a phase, and a run may want traction, a hold, a coast,
+    // traction again and a coast: the phases grown are a coast or traction for the last few
+    // metres and a hold before the end of the first traction. The cheapest run where every
+    // window holds is kept.
+    const double end_phase_m = engine.route().length_m() - kEndPhase_m;
+    auto grown = [&](const LambdaRun& shape) {
+      const physics::ControlProgram& p = shape.program;
+      std::vector<LambdaRun> out;
+      auto add = [&](physics::ControlProgram program) {
+        LambdaRun variant = shape;
+        variant.program = std::move(program);
+        variant.sim = engine.resimulate(variant.program, start, shape.sim);
+        ++simulations;
+        out.push_back(std::move(variant));
+      };
+      if (!p.empty() && p.back().from_m < end_phase_m - kEndPhase_m && end_phase_m > from_m) {
+        for (const physics::Control c : {physics::Control::Coast, physics::Control::MaxTraction}) {
+          if (p.back().control == c) continue;
+          physics::ControlProgram q = p;
+          q.push_back({end_phase_m, c});
+          add(std::move(q));
+        }
+      }
+      for (std::size_t j = 1; j < p.size(); ++j) {
+        if (p[j - 1].control != physics::Control::MaxTraction || !(p[j].from_m > from_m)) continue;
+        if (p[j].control != physics::Control::Hold &&
+            p[j].from_m - kEndPhase_m > std::max(p[j - 1].from_m, from_m) + kEndPhase_m) {
+          physics::ControlProgram q = p;
+          q.insert(q.begin() + static_cast<std::ptrdiff_t>(j),
+                   {p[j].from_m - kEndPhase_m, physics::Control::Hold});
+          add(std::move(q));
+        }
+        break;
+      }
+      return out;
+    };
+    // Descends each shape; keeps the cheapest run that holds every window.
+    int budget = options.descend_one_speed_ends ? kDescentSimulations : 0;
+    auto descend_all = [&](const std::vector<LambdaRun>& shapes) {
+      for (const LambdaRun& shape : shapes) {
+        SwitchDescentOptions descent_options;
+        descent_options.max_simulations = std::min(descent_options.max_simulations, budget);
+        SwitchDescentResult descent;
+        if (descent_options.max_simulations > 0) {
+          descent = descend_switches(engine, start, end, o.run.sim.running_time_s, shape, from_m,
+                                     descent_options);
+        }
+        simulations += descent.simulations;
+        budget -= descent.simulations;
+        const LambdaRun* descended = descent.run ? &*descent.run : nullptr;
+        for (const LambdaRun* run : {&shape, descended}) {
+          if (run && run->cost_J < (1.0 - kDescentGain) * o.run.cost_J && holds_on(*run)) {
+            o.run = *run;
+            replaced = true;
+          }
+        }
+      }
+    };
+    std::vector<LambdaRun> shapes = {o.run};
+    if (std::optional<LambdaRun> run =
+            family_run(engine, start, end, o.run.sim.running_time_s, o.run.program, from_m,
+                       FamilySet::Any, &simulations)) {
+      shapes.push_back(std::move(*run));
     }
+    for (std::size_t k = 0, n = shapes.size(); k < n; ++k) {
+      for (LambdaRun& variant : grown(shapes[k])) shapes.push_back(std::move(variant));
+    }
+    descend_all(shapes);
+    descend_all(grown(o.run));
+    if (!replaced) return;
+    // The prices and binding sides were those of the grid's run, which is no longer the
+    // part's: they are cleared, as for a slow run, and the replacement is said.
+    o.stretch_lambda_J_per_s.assign(o.points.size() + 1, NAN);
+    o.binding_sign.assign(o.points.size(), 0);
+    o.notes.push_back(format_text(
+        "a part that ends at one speed has its run after its last passing point re-shaped (runs "
+        "of a few phases, a descent on its switches), %.1f kJ cheaper than the grid's run moved "
+        "onto that speed (%d simulations; feasible, possibly not the least energy; its time "
+        "prices are not reported)",
+        (grid_cost_J - o.run.cost_J) / 1e3, simulations));
   };
   PartOutcome* kept = &first->out;
   Attempt strict;

@@ -143,11 +143,12 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
   out.journey.total_wall_s = out.summary.total_wall_s;
   out.summary.warnings.push_back(format_text(
       "zero-width windows pinned: %s, each at the time or speed searched for it (golden "
-      "section over solves of its part); %s than the plain search",
+      "section over solves of its part); %s",
       where.c_str(),
-      finite(plain_cost)
-          ? format_text("%.1f kJ less", units::J_to_kJ(plain_cost - cost_of(out))).c_str()
-          : "every window holds, unlike"));
+      finite(plain_cost) ? format_text("%.1f kJ less than the plain search",
+                                       units::J_to_kJ(plain_cost - cost_of(out)))
+                               .c_str()
+                         : "every window holds, where the plain search missed one"));
   out.journey.warnings = out.summary.warnings;
   return out;
 }
