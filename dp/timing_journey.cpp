@@ -505,7 +505,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   trial.engine.grid.ds_m = std::max(options.engine.grid.ds_m, 10.0);
   trial.engine.grid.dv_kmh = std::max(options.engine.grid.dv_kmh, 0.5);
   trial.engine.grid.substep_m = std::max(options.engine.grid.substep_m, 5.0);
-  trial.descend_one_speed_ends = false;
+  trial.descend_on_switches = false;
   const auto solve_trial = [&](const std::vector<TimingWindow>& w) {
     return solve_windows(train, track, w, trial, id);
   };

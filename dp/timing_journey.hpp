@@ -34,10 +34,10 @@ struct TimingJourneyOptions {
   double speed_tolerance_kmh = 0.1;
   // Price evaluations (sweep, extraction, re-simulation) allowed per part.
   int max_evaluations = 400;
-  // A part that ends at one speed has its run descended on its switches
+  // A part that ends at one speed or at a stop has its run descended on its switches
   // (dp/timing_switch_descent.hpp); off for the speed pins' trial solves, which only compare
   // times.
-  bool descend_one_speed_ends = true;
+  bool descend_on_switches = true;
   // Called after each price evaluation of a part ("price evaluation", the part's count, 0; a part
   // without binding windows searches one price: "lambda evaluation"): a long journey shows its
   // progress, and a caller may stop it by throwing from here.

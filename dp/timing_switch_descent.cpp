@@ -40,7 +40,7 @@ class Descent {
 
   SwitchDescentResult run(const LambdaRun& given) {
     SwitchDescentResult out;
-    if (!end_.moving || !options_.IsValid()) return out;
+    if (!options_.IsValid()) return out;
     // The run given, at the engine's fine step: its cost, when it meets the equations.
     step_m_ = engine_.options().resim_step_m;
     Point given_pt{given.program, given.sim, {}, 0.0};
@@ -129,7 +129,6 @@ class Descent {
       const std::vector<std::size_t> sw = switches(fine.program);
       met = differences(fine, g, jac) && restore(fine, jac, weights(fine.program, sw), sw);
     }
-    out.simulations = simulations_;
     if (met && fine.cost < given_cost - kLeastGain * std::abs(fine.cost) && end_(fine.sim)) {
       LambdaRun run = given;
       run.lambda = NAN;
@@ -139,6 +138,7 @@ class Descent {
       run.kept.reset();
       out.run = std::move(run);
     }
+    out.simulations = simulations_;
     return out;
   }
 
@@ -223,7 +223,14 @@ class Descent {
       if (at.program[k].from_m + h >= next - kLeastGap_m) h = -h;
       Point moved = at;
       moved.program[k].from_m += h;
-      if (!evaluate(moved)) return false;
+      if (!evaluate(moved)) {
+        // (A switch whose move one way ends the run wrongly, e.g. a brake for the stop moved
+        // earlier, is differenced the other way; one that fails both ways stays where it is.)
+        moved = at;
+        moved.program[k].from_m -= h;
+        h = -h;
+        if (!ordered(moved.program) || !evaluate(moved)) continue;
+      }
       g[c] = (moved.cost - at.cost) / h;
       for (std::size_t i = 0; i < q; ++i) jac[i * u + c] = (moved.r[i] - at.r[i]) / h;
     }

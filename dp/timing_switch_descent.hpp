@@ -1,12 +1,14 @@
 // Descent on the switch positions of a part's run, for a part of a timing-point journey that
-// ends at one speed at one time (dp/timing_journey_part.hpp): the grid's run moved onto that
-// speed, or a run of a few phases (dp/timing_family_run.hpp), keeps the shape it was found
-// with, and a run of that shape with its switches elsewhere can be cheaper (traction that the
-// end's braking envelope brakes back, a hold where a longer traction and a coast would do).
-// Every switch after the part's last passing point is a variable; the arrival time and the end
-// speed are two equations (an end speed the braking envelope holds, whatever a switch does, is
-// left to the envelope). Each round takes the gradient of the cost and the Jacobian of the
-// equations by finite differences on the simulator, steps along the gradient projected onto
+// ends at one speed at one time, or at a stop (dp/timing_journey_part.hpp): the grid's run (moved
+// onto the end's speed), or a run of a few phases (dp/timing_family_run.hpp), keeps the shape it
+// was found with, and a run of that shape with its switches elsewhere can be cheaper (traction
+// that the end's braking envelope brakes back, a hold where a longer traction and a coast would
+// do, a coast that enters a lower limit a grid step away from where it should). Every switch
+// after the part's last passing point is a variable; the arrival time is an equation, and a
+// zero-width end speed a second one (an end speed the braking envelope holds, whatever a switch
+// does, is left to the envelope; so is the stop, and a switch whose move one way stops the run
+// short is differenced the other way). Each round takes the gradient of the cost and the Jacobian
+// of the equations by finite differences on the simulator, steps along the gradient projected onto
 // the equations' tangent, restores the equations by Newton steps with that Jacobian (each
 // switch weighted by its room, as in the Newton step that meets windows), and keeps the run
 // only when it costs less and meets both; a refused step is tried again shorter, and where the
@@ -18,6 +20,7 @@
 // It is a local optimum of the run's shape, not a proof of the least energy.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "dp/section_engine.hpp"
@@ -45,8 +48,8 @@ struct SwitchDescentResult {
   int rounds = 0;
 };
 
-// From run (which must end at end's one speed, target_s after the start): moves only the
-// switches after from_m.
+// From run (which must end as end asks, target_s after the start): moves only the switches
+// after from_m.
 SwitchDescentResult descend_switches(const SectionEngine& engine, const StartState& start,
                                      const EndCheck& end, double target_s, const LambdaRun& run,
                                      double from_m, const SwitchDescentOptions& options = {});

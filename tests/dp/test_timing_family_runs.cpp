@@ -165,12 +165,14 @@ TEST(TimingSlowRun, HeldBackEndsAreMetExactly) {
   }
 }
 
-// A part that ends at one speed whose grid run the family runs beat (the one-speed end's
-// polish replaces its run after its last passing point): the time prices of the grid's run no
-// longer describe the reported run, so none is reported (NaN), and a warning says why.
-// Journeys from rest to exactly a speed at exactly a time; at least one must be polished, or
-// the test checks nothing.
-TEST(TimingOneSpeedEnd, APolishedPartReportsNoPricesOfTheRunItReplaced) {
+// A part that ends at one speed whose run the one-speed end's polish replaces (after its last
+// passing point; these journeys have none, so that is the part's only stretch): the time
+// price of the grid's run there no longer describes the reported run, so none is reported
+// (NaN), and a warning says why. (That grid price, 329 244 J/s at 100 s and at 130 s to 8 m/s,
+// is not the slope of the least energy in time there, 178 627 and 185 458 J/s measured from
+// solves 2 s either side.) Journeys from rest to exactly a speed at exactly a time; at least
+// one must be polished, or the test checks nothing.
+TEST(TimingOneSpeedEnd, APolishedPartReportsNoPriceOfTheRunItReplaced) {
   const physics::Train train = data::default_train();
   const physics::Route track = level_track();
   const TimingJourneyOptions options = timing_test::coarse_timing();
@@ -188,9 +190,7 @@ TEST(TimingOneSpeedEnd, APolishedPartReportsNoPricesOfTheRunItReplaced) {
           [](const std::string& w) { return w.find("re-shaped") != std::string::npos; });
       if (!said) continue;
       ++polished;
-      for (const double lambda : sol.parts.at(0).stretch_lambda_J_per_s) {
-        EXPECT_TRUE(std::isnan(lambda)) << lambda;
-      }
+      EXPECT_TRUE(std::isnan(sol.parts.at(0).stretch_lambda_J_per_s.back()));
     }
   }
   EXPECT_GT(polished, 0);

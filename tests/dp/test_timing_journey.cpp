@@ -294,9 +294,18 @@ TEST(TimingJourney, TwoBindingWindowsOnALongPartAreMetAndNoDearerThanALattice) {
   const physics::Route track = timing_test::rise_track(4000.0, 8000.0, 12000.0, 3.0, "L0", "L1");
   const TwoLatest two = two_latest_windows(train, track, {4000.0, 8000.0}, 700.0, 700.0);
   ASSERT_TRUE(two.converged);
-  const TimingJourneyOptions options = coarse();
+  // The price search itself, without the descent on the switches that follows it (which
+  // clears the last stretch's price the lattice is laid around); the descended run is no
+  // dearer.
+  TimingJourneyOptions options = coarse();
+  options.descend_on_switches = false;
   const TimingJourneySolution sol =
       solve_timing_journey(train, track, two.windows, options, "long");
+  const TimingJourneySolution descended =
+      solve_timing_journey(train, track, two.windows, coarse(), "long");
+  ASSERT_TRUE(descended.windows_met);
+  EXPECT_LE(descended.journey.sections.at(0).run.sim.energy.traction_work_J,
+            sol.journey.sections.at(0).run.sim.energy.traction_work_J);
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
   ASSERT_NO_FATAL_FAILURE(expect_both_bind_latest(sol, two.latest_s, options.time_tolerance_s));
