@@ -1760,6 +1760,34 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
                       false, arrival_free)
         .every_window_holds(run);
   };
+  // The passing points a descent on the run's switches holds (dp/timing_switch_descent.hpp):
+  // a zero-width time or speed at its value, a window the run meets at a bound at the run's
+  // own value there (so the descent keeps every window the run meets; the part's check of
+  // every window then decides).
+  auto held_on = [&](const LambdaRun& run) {
+    const double tol_t = options.time_tolerance_s;
+    const double tol_v = units::kmh_to_ms(options.speed_tolerance_kmh);
+    std::vector<HeldPassing> held;
+    for (const PartPoint& p : points) {
+      const TimingWindow& w = windows[p.index];
+      const Passing at = passing_at(run.sim.trace, p.s_m);
+      HeldPassing h{p.s_m, NAN, NAN};
+      if (finite(p.earliest_s) && p.earliest_s == p.latest_s) {
+        h.time_s = p.earliest_s;
+      } else if ((finite(p.latest_s) && at.t_s >= p.latest_s - tol_t) ||
+                 (finite(p.earliest_s) && at.t_s <= p.earliest_s + tol_t)) {
+        h.time_s = at.t_s;
+      }
+      if (finite(w.min_speed_ms) && w.min_speed_ms == w.max_speed_ms) {
+        h.speed_ms = w.min_speed_ms;
+      } else if ((finite(w.max_speed_ms) && at.v_ms >= w.max_speed_ms - tol_v) ||
+                 (finite(w.min_speed_ms) && at.v_ms <= w.min_speed_ms + tol_v)) {
+        h.speed_ms = at.v_ms;
+      }
+      if (finite(h.time_s) || finite(h.speed_ms)) held.push_back(h);
+    }
+    return held;
+  };
   // A part whose every run arrives before its earliest arrival, or that asks for a time beyond
   // the slowest run the grid solves (a fast moving start, a late stop or a high end speed): its
   // energy rises with its time there, so the run of dp/timing_family_run.hpp at the earliest
@@ -1789,16 +1817,6 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         out.run.sim.running_time_s, simulations));
     return out;
   };
-  std::optional<Attempt> first;
-  try {
-    first = attempt(false);
-  } catch (const LongTimeError& e) {
-    // (A part whose earliest arrival the grid reaches is searched with a free arrival by the
-    // caller.)
-    if (e.maximum_s() >= earliest_arrival_s) throw;
-    if (std::optional<PartOutcome> o = slow(nullptr)) return std::move(*o);
-    throw;
-  }
   auto too_fast = [&](const PartOutcome& o) {
     return !o.holds && end.reaches_end(o.run.sim) &&
            o.run.sim.running_time_s < earliest_arrival_s - options.time_tolerance_s;
@@ -1863,8 +1881,8 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         descent_options.max_simulations = std::min(descent_options.max_simulations, budget);
         SwitchDescentResult descent;
         if (descent_options.max_simulations > 0) {
-          descent = descend_switches(engine, start, end, o.run.sim.running_time_s, shape, from_m,
-                                     descent_options);
+          descent = descend_switches(engine, start, end, o.run.sim.running_time_s, shape, 0.0,
+                                     descent_options, held_on(shape));
         }
         simulations += descent.simulations;
         budget -= descent.simulations;
@@ -1889,47 +1907,61 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     descend_all(shapes);
     descend_all(grown(o.run));
     if (!replaced) return;
-    // The price after the last passing point was that of the grid's run, which is no longer
-    // the part's there: it is cleared, and the replacement is said. (The run up to that point
-    // is the search's, so its passing times, prices and binding sides stand.) A multiplier of
-    // the new run's time equation, balanced against its cost gradient, was tried and not kept:
-    // where the descent ends at a kink it was twice the slope of the least energy in time.
-    if (!o.stretch_lambda_J_per_s.empty()) o.stretch_lambda_J_per_s.back() = NAN;
+    // The prices were those of the grid's run, which is no longer the part's: they are
+    // cleared, and the replacement is said. (The passing points the run met at a bound are
+    // held there, so their binding sides stand.) A multiplier of the new run's time equation,
+    // balanced against its cost gradient, was tried and not kept: where the descent ends at a
+    // kink it was twice the slope of the least energy in time.
+    o.stretch_lambda_J_per_s.assign(o.stretch_lambda_J_per_s.size(), NAN);
     o.notes.push_back(format_text(
-        "a part that ends at one speed has its run after its last passing point re-shaped (runs "
-        "of a few phases, a descent on its switches), %.1f kJ cheaper than the grid's run moved "
-        "onto that speed (%d simulations; feasible, possibly not the least energy; its time "
-        "price after that point is not reported)",
+        "a part that ends at one speed has its run re-shaped (runs of a few phases after its "
+        "last passing point, a descent on its switches), %.1f kJ cheaper than the run its "
+        "search found (%d simulations; feasible, possibly not the least energy; its time prices "
+        "are not reported)",
         (grid_cost_J - o.run.cost_J) / 1e3, simulations));
   };
-  // A part that ends at a stop: its run descended on its switches after its last passing point
-  // at its own arrival time (dp/timing_switch_descent.hpp), where the grid's run, even
+  // A part that ends at a stop: its run descended on its switches at its own arrival time,
+  // holding its passing points (dp/timing_switch_descent.hpp), where the grid's run, even
   // polished, is a step away from the continuous optimum (a descent into a lower limit).
   auto descend_stop_end = [&](PartOutcome& o) {
     if (end.moving || !o.holds || !options.descend_on_switches ||
         engine.route().length_m() > kStopDescentReach_m) {
       return;
     }
-    const double from_m = points.empty() ? 0.0 : points.back().s_m;
     SwitchDescentOptions descent_options;
     descent_options.max_simulations = kStopDescentSimulations;
     const SwitchDescentResult descent = descend_switches(
-        engine, start, end, o.run.sim.running_time_s, o.run, from_m, descent_options);
+        engine, start, end, o.run.sim.running_time_s, o.run, 0.0, descent_options, held_on(o.run));
     if (!descent.run || !(descent.run->cost_J < (1.0 - kDescentGain) * o.run.cost_J) ||
         !holds_on(*descent.run)) {
       return;
     }
     const double saved_J = o.run.cost_J - descent.run->cost_J;
     o.run = *descent.run;
-    // The price after the last passing point is cleared, as above. (The stretches before are
-    // the search's run: their prices and binding sides stand.)
-    if (!o.stretch_lambda_J_per_s.empty()) o.stretch_lambda_J_per_s.back() = NAN;
+    // The prices are cleared, as above.
+    o.stretch_lambda_J_per_s.assign(o.stretch_lambda_J_per_s.size(), NAN);
     o.notes.push_back(format_text(
-        "a part that ends at a stop has its run after its last passing point descended on its "
-        "switches, %.1f kJ cheaper than the grid's run (%d simulations; feasible, possibly not "
-        "the least energy; its time price after that point is not reported)",
+        "a part that ends at a stop has its run descended on its switches, %.1f kJ cheaper than "
+        "the run its search found (%d simulations; feasible, possibly not the least energy; its "
+        "time prices are not reported)",
         saved_J / 1e3, descent.simulations));
   };
+  // Every run a part returns, the search's or a slow run, is polished and descended.
+  auto finished = [&](PartOutcome o) {
+    polish_one_speed_end(o);
+    descend_stop_end(o);
+    return o;
+  };
+  std::optional<Attempt> first;
+  try {
+    first = attempt(false);
+  } catch (const LongTimeError& e) {
+    // (A part whose earliest arrival the grid reaches is searched with a free arrival by the
+    // caller.)
+    if (e.maximum_s() >= earliest_arrival_s) throw;
+    if (std::optional<PartOutcome> o = slow(nullptr)) return finished(std::move(*o));
+    throw;
+  }
   PartOutcome* kept = &first->out;
   Attempt strict;
   if (!first->kept() && first->banded_transitions) {
@@ -1939,11 +1971,9 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     kept->evaluations = evaluations;
   }
   if (too_fast(*kept)) {
-    if (std::optional<PartOutcome> o = slow(kept)) return std::move(*o);
+    if (std::optional<PartOutcome> o = slow(kept)) return finished(std::move(*o));
   }
-  polish_one_speed_end(*kept);
-  descend_stop_end(*kept);
-  return std::move(*kept);
+  return finished(std::move(*kept));
 }
 
 }  // namespace ecorail::dp::timing

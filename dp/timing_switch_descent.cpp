@@ -27,8 +27,10 @@ constexpr double kLeastGap_m = 1e-3;
 class Descent {
  public:
   Descent(const SectionEngine& engine, const StartState& start, const EndCheck& end,
-          double target_s, double from_m, const SwitchDescentOptions& options)
-      : engine_(engine),
+          double target_s, double from_m, const SwitchDescentOptions& options,
+          const std::vector<HeldPassing>& held)
+      : held_(held),
+        engine_(engine),
         start_(start),
         end_(end),
         target_s_(target_s),
@@ -196,6 +198,11 @@ class Descent {
     if (!end_.reaches_end(pt.sim)) return false;
     pt.r.clear();
     pt.r.push_back((pt.sim.running_time_s - target_s_) / (0.5 * kZeroWidthTime_s));
+    for (const HeldPassing& h : held_) {
+      const Passing at = passing_at(pt.sim.trace, h.s_m);
+      if (finite(h.time_s)) pt.r.push_back((at.t_s - h.time_s) / (0.5 * kZeroWidthTime_s));
+      if (finite(h.speed_ms)) pt.r.push_back((at.v_ms - h.speed_ms) / (0.5 * kZeroWidthSpeed_ms));
+    }
     if (pinned_speed_) {
       pt.r.push_back((pt.sim.end_speed_ms - end_.min_ms) / (0.5 * kZeroWidthSpeed_ms));
     } else if (!end_(pt.sim)) {
@@ -255,27 +262,41 @@ class Descent {
     return rows;
   }
 
-  // (J W J^T)^-1 b for q = 1 or 2; false when singular.
+  // (J W J^T)^-1 b (J: q x u); false when singular. Gaussian elimination with partial
+  // pivoting: q is a handful of equations.
   static bool solve_small(const std::vector<double>& jac, const std::vector<double>& w,
                           std::size_t q, std::vector<double>& b) {
+    if (q == 0) return true;
     const std::size_t u = w.size();
-    double a[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+    std::vector<double> a(q * q, 0.0);
+    double largest = 0.0;
     for (std::size_t i = 0; i < q; ++i) {
       for (std::size_t j = 0; j < q; ++j) {
-        for (std::size_t c = 0; c < u; ++c) a[i][j] += jac[i * u + c] * w[c] * jac[j * u + c];
+        for (std::size_t c = 0; c < u; ++c) a[i * q + j] += jac[i * u + c] * w[c] * jac[j * u + c];
+      }
+      largest = std::max(largest, std::abs(a[i * q + i]));
+    }
+    if (!(largest > 0.0)) return false;
+    for (std::size_t k = 0; k < q; ++k) {
+      std::size_t pivot = k;
+      for (std::size_t i = k + 1; i < q; ++i) {
+        if (std::abs(a[i * q + k]) > std::abs(a[pivot * q + k])) pivot = i;
+      }
+      if (!(std::abs(a[pivot * q + k]) > 1e-12 * largest)) return false;
+      if (pivot != k) {
+        for (std::size_t j = 0; j < q; ++j) std::swap(a[k * q + j], a[pivot * q + j]);
+        std::swap(b[k], b[pivot]);
+      }
+      for (std::size_t i = k + 1; i < q; ++i) {
+        const double f = a[i * q + k] / a[k * q + k];
+        for (std::size_t j = k; j < q; ++j) a[i * q + j] -= f * a[k * q + j];
+        b[i] -= f * b[k];
       }
     }
-    if (q == 0) return true;
-    if (q == 1) {
-      if (!(std::abs(a[0][0]) > 0.0)) return false;
-      b[0] /= a[0][0];
-      return true;
+    for (std::size_t k = q; k-- > 0;) {
+      for (std::size_t j = k + 1; j < q; ++j) b[k] -= a[k * q + j] * b[j];
+      b[k] /= a[k * q + k];
     }
-    const double det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-    if (!(std::abs(det) > 1e-12 * std::abs(a[0][0] * a[1][1]))) return false;
-    const double x0 = (a[1][1] * b[0] - a[0][1] * b[1]) / det;
-    const double x1 = (a[0][0] * b[1] - a[1][0] * b[0]) / det;
-    b = {x0, x1};
     return true;
   }
 
@@ -323,6 +344,7 @@ class Descent {
     return max_abs(pt.r) <= 1.0;
   }
 
+  std::vector<HeldPassing> held_;
   const SectionEngine& engine_;
   StartState start_;
   const EndCheck& end_;
@@ -337,8 +359,9 @@ class Descent {
 
 SwitchDescentResult descend_switches(const SectionEngine& engine, const StartState& start,
                                      const EndCheck& end, double target_s, const LambdaRun& run,
-                                     double from_m, const SwitchDescentOptions& options) {
-  return Descent(engine, start, end, target_s, from_m, options).run(run);
+                                     double from_m, const SwitchDescentOptions& options,
+                                     const std::vector<HeldPassing>& held) {
+  return Descent(engine, start, end, target_s, from_m, options, held).run(run);
 }
 
 }  // namespace ecorail::dp::timing

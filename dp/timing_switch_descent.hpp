@@ -4,10 +4,11 @@
 // was found with, and a run of that shape with its switches elsewhere can be cheaper (traction
 // that the end's braking envelope brakes back, a hold where a longer traction and a coast would
 // do, a coast that enters a lower limit a grid step away from where it should). Every switch
-// after the part's last passing point is a variable; the arrival time is an equation, and a
-// zero-width end speed a second one (an end speed the braking envelope holds, whatever a switch
-// does, is left to the envelope; so is the stop, and a switch whose move one way stops the run
-// short is differenced the other way). Each round takes the gradient of the cost and the Jacobian
+// after from_m is a variable; the arrival time is an equation, a zero-width end speed a second
+// one, and each held passing point one or two more (its time, its speed: a zero-width window,
+// or one the run meets at a bound, held where the run meets it). An end speed the braking
+// envelope holds, whatever a switch does, is left to the envelope; so is the stop, and a
+// switch whose move one way stops the run short is differenced the other way. Each round takes the gradient of the cost and the Jacobian
 // of the equations by finite differences on the simulator, steps along the gradient projected onto
 // the equations' tangent, restores the equations by Newton steps with that Jacobian (each
 // switch weighted by its room, as in the Newton step that meets windows), and keeps the run
@@ -22,6 +23,7 @@
 
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "dp/section_engine.hpp"
 #include "dp/timing_journey_part.hpp"
@@ -48,10 +50,18 @@ struct SwitchDescentResult {
   int rounds = 0;
 };
 
+// A passing point the descent holds: its time and/or its speed (NaN: free) at s_m, relative to
+// the part's start (a zero-width window, or a window the run meets at a bound).
+struct HeldPassing {
+  double s_m = 0.0;
+  double time_s = NAN, speed_ms = NAN;
+};
+
 // From run (which must end as end asks, target_s after the start): moves only the switches
-// after from_m.
+// after from_m, holding each of `held` as one or two more equations.
 SwitchDescentResult descend_switches(const SectionEngine& engine, const StartState& start,
                                      const EndCheck& end, double target_s, const LambdaRun& run,
-                                     double from_m, const SwitchDescentOptions& options = {});
+                                     double from_m, const SwitchDescentOptions& options = {},
+                                     const std::vector<HeldPassing>& held = {});
 
 }  // namespace ecorail::dp::timing

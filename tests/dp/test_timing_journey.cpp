@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "data/train_io.hpp"
 #include "dp/section_engine.hpp"
@@ -239,6 +241,22 @@ void expect_both_bind_latest(const TimingJourneySolution& sol, std::array<double
   }
 }
 
+// The price search alone, without the descent on the switches that follows it (which clears
+// the stretch prices the lattices are laid around); the descended run, solved too, meets the
+// windows and is no dearer.
+TimingJourneySolution price_search_alone(const physics::Train& train, const physics::Route& track,
+                                         const std::vector<TimingWindow>& windows,
+                                         const std::string& id) {
+  TimingJourneyOptions options = coarse();
+  options.descend_on_switches = false;
+  TimingJourneySolution sol = solve_timing_journey(train, track, windows, options, id);
+  const TimingJourneySolution descended = solve_timing_journey(train, track, windows, coarse(), id);
+  EXPECT_TRUE(descended.windows_met);
+  EXPECT_LE(descended.journey.sections.at(0).run.sim.energy.traction_work_J,
+            sol.journey.sections.at(0).run.sim.energy.traction_work_J);
+  return sol;
+}
+
 // The part's run costs no more than the best lattice run (best_lattice_run_J, within 0.2 %);
 // wide(found) gives the wide lattice's values from the solver's three stretch prices.
 template <typename Wide>
@@ -261,7 +279,7 @@ TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
   const TwoLatest two = two_latest_windows(train, track, {1000.0, 2000.0}, 240.0, 200.0);
   ASSERT_TRUE(two.converged);
   const TimingJourneyOptions options = coarse();
-  const TimingJourneySolution sol = solve_timing_journey(train, track, two.windows, options, "two");
+  const TimingJourneySolution sol = price_search_alone(train, track, two.windows, "two");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
   ASSERT_NO_FATAL_FAILURE(expect_both_bind_latest(sol, two.latest_s, options.time_tolerance_s));
@@ -294,18 +312,8 @@ TEST(TimingJourney, TwoBindingWindowsOnALongPartAreMetAndNoDearerThanALattice) {
   const physics::Route track = timing_test::rise_track(4000.0, 8000.0, 12000.0, 3.0, "L0", "L1");
   const TwoLatest two = two_latest_windows(train, track, {4000.0, 8000.0}, 700.0, 700.0);
   ASSERT_TRUE(two.converged);
-  // The price search itself, without the descent on the switches that follows it (which
-  // clears the last stretch's price the lattice is laid around); the descended run is no
-  // dearer.
-  TimingJourneyOptions options = coarse();
-  options.descend_on_switches = false;
-  const TimingJourneySolution sol =
-      solve_timing_journey(train, track, two.windows, options, "long");
-  const TimingJourneySolution descended =
-      solve_timing_journey(train, track, two.windows, coarse(), "long");
-  ASSERT_TRUE(descended.windows_met);
-  EXPECT_LE(descended.journey.sections.at(0).run.sim.energy.traction_work_J,
-            sol.journey.sections.at(0).run.sim.energy.traction_work_J);
+  const TimingJourneyOptions options = coarse();
+  const TimingJourneySolution sol = price_search_alone(train, track, two.windows, "long");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
   ASSERT_NO_FATAL_FAILURE(expect_both_bind_latest(sol, two.latest_s, options.time_tolerance_s));
