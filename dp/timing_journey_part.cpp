@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "dp/cruise_polish.hpp"
+#include "dp/dense_solve.hpp"
 #include "dp/lambda_bracket.hpp"
 #include "dp/policy_extraction.hpp"
 #include "dp/regimes.hpp"
@@ -1356,32 +1357,6 @@ class PartSolver {
         (p.s_m - grid.position(before)) / (grid.position(before + 1) - grid.position(before));
     out.push_back({before, lo, hi, f});
     return out;
-  }
-
-  // Solves a x = b in place (a: n x n, row-major; Gaussian elimination with partial
-  // pivoting). False for a singular a.
-  static bool solve_dense(std::vector<double>& a, std::vector<double>& b, std::size_t n) {
-    for (std::size_t c = 0; c < n; ++c) {
-      std::size_t piv = c;
-      for (std::size_t i = c + 1; i < n; ++i) {
-        if (std::abs(a[i * n + c]) > std::abs(a[piv * n + c])) piv = i;
-      }
-      if (!(std::abs(a[piv * n + c]) > 0.0)) return false;
-      if (piv != c) {
-        for (std::size_t j = 0; j < n; ++j) std::swap(a[c * n + j], a[piv * n + j]);
-        std::swap(b[c], b[piv]);
-      }
-      for (std::size_t i = c + 1; i < n; ++i) {
-        const double f = a[i * n + c] / a[c * n + c];
-        for (std::size_t j = c; j < n; ++j) a[i * n + j] -= f * a[c * n + j];
-        b[i] -= f * b[c];
-      }
-    }
-    for (std::size_t c = n; c-- > 0;) {
-      for (std::size_t j = c + 1; j < n; ++j) b[c] -= a[c * n + j] * b[j];
-      b[c] /= a[c * n + c];
-    }
-    return true;
   }
 
   // Whether every window of the part holds on r's re-simulation, the binding points in active

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "dp/dense_solve.hpp"
+
 namespace ecorail::dp::timing {
 
 namespace {
@@ -262,8 +264,7 @@ class Descent {
     return rows;
   }
 
-  // (J W J^T)^-1 b (J: q x u); false when singular. Gaussian elimination with partial
-  // pivoting: q is a handful of equations.
+  // (J W J^T)^-1 b (J: q x u); false when singular.
   static bool solve_small(const std::vector<double>& jac, const std::vector<double>& w,
                           std::size_t q, std::vector<double>& b) {
     if (q == 0) return true;
@@ -276,28 +277,7 @@ class Descent {
       }
       largest = std::max(largest, std::abs(a[i * q + i]));
     }
-    if (!(largest > 0.0)) return false;
-    for (std::size_t k = 0; k < q; ++k) {
-      std::size_t pivot = k;
-      for (std::size_t i = k + 1; i < q; ++i) {
-        if (std::abs(a[i * q + k]) > std::abs(a[pivot * q + k])) pivot = i;
-      }
-      if (!(std::abs(a[pivot * q + k]) > 1e-12 * largest)) return false;
-      if (pivot != k) {
-        for (std::size_t j = 0; j < q; ++j) std::swap(a[k * q + j], a[pivot * q + j]);
-        std::swap(b[k], b[pivot]);
-      }
-      for (std::size_t i = k + 1; i < q; ++i) {
-        const double f = a[i * q + k] / a[k * q + k];
-        for (std::size_t j = k; j < q; ++j) a[i * q + j] -= f * a[k * q + j];
-        b[i] -= f * b[k];
-      }
-    }
-    for (std::size_t k = q; k-- > 0;) {
-      for (std::size_t j = k + 1; j < q; ++j) b[k] -= a[k * q + j] * b[j];
-      b[k] /= a[k * q + k];
-    }
-    return true;
+    return largest > 0.0 && solve_dense(a, b, q, 1e-12 * largest);
   }
 
   // -W g projected onto the tangent of the equations: -W g + W J^T (J W J^T)^-1 J W g.
