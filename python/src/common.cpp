@@ -35,8 +35,12 @@ py::object to_python(const nlohmann::json& j) {
       return py::int_(j.get<std::int64_t>());
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
-    case nlohmann::json::value_t::number_float:
-      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::number_float: {
+      // A non-finite number is null in the command's JSON file (nlohmann writes it so), and so
+      // None here: to_dict() equals the file, field for field.
+      const double v = j.get<double>();
+      return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
+    }
     case nlohmann::json::value_t::string:
       return py::str(j.get_ref<const std::string&>());
     case nlohmann::json::value_t::array: {
