@@ -1,8 +1,9 @@
-// A small dense linear solve for the Newton steps on a run's switch points
-// (dp/timing_journey_part.cpp, dp/timing_switch_descent.cpp): a handful of equations, so
-// Gaussian elimination with partial pivoting, in place.
+// The small pieces of the Newton steps on a run's switch points (dp/timing_journey_part.cpp,
+// dp/timing_switch_descent.cpp): a dense linear solve of a handful of equations (Gaussian
+// elimination with partial pivoting, in place), and the largest residual.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -35,6 +36,13 @@ inline bool solve_dense(std::vector<double>& a, std::vector<double>& b, std::siz
     b[c] /= a[c * n + c];
   }
   return true;
+}
+
+// The largest |r_i| (0 for none): residuals are scaled so that 1 is met.
+inline double max_abs(const std::vector<double>& r) {
+  double worst = 0.0;
+  for (double x : r) worst = std::max(worst, std::abs(x));
+  return worst;
 }
 
 }  // namespace ecorail::dp

@@ -1031,12 +1031,6 @@ class PartSolver {
     }
   }
 
-  static double max_abs(const std::vector<double>& r) {
-    double worst = 0.0;
-    for (double x : r) worst = std::max(worst, std::abs(x));
-    return worst;
-  }
-
   // A phase a few metres long between two switches pins both (each switch's weight is its
   // room, and switches may not cross), so a window that needs the phase moved by tens of metres
   // (a short hold after the first traction, a point near the flat-out time) is out of reach:

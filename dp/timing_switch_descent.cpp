@@ -154,12 +154,6 @@ class Descent {
     double cost = 0.0;
   };
 
-  static double max_abs(const std::vector<double>& r) {
-    double worst = 0.0;
-    for (double x : r) worst = std::max(worst, std::abs(x));
-    return worst;
-  }
-
   // The switches that move: after from_m (the run before it meets the part's passing points).
   std::vector<std::size_t> switches(const ControlProgram& p) const {
     std::vector<std::size_t> sw;

@@ -6,8 +6,9 @@
 // speed and time (every speed pair of neighbouring stages a constant-force step, times kept
 // exact per label and merged in buckets) which knows nothing of the runs' structure, and
 // against a proven lower bound. Journeys of zero-width windows around witness runs
-// (dp/timing_speed_pins.hpp and the one-speed end's polish) are met and no dearer than their
-// witness.
+// (dp/timing_speed_pins.hpp and the one-speed end's polish), and journeys ending at one speed
+// around witnesses of a few phases (the descent on the switches, dp/timing_switch_descent.hpp),
+// are met and no dearer than their witness; a re-shaped run reports no stale prices.
 #include <gtest/gtest.h>
 
 #include <algorithm>
