@@ -61,11 +61,11 @@ struct Journey {
     return points;
   }
   // Part j's search between two times.
-  PartOutcome solve(std::size_t j, double departure_s, double arrival_s,
-                    bool arrival_free = false) const {
+  PartOutcome solve(std::size_t j, double departure_s, double arrival_s, bool arrival_free = false,
+                    bool by_labels = false) const {
     return solve_part(*engines[j], starts[j], ends[j], arrival_s - departure_s,
                       windows[bounds[j].last].earliest_s - departure_s, points_of(j, departure_s),
-                      windows, options, arrival_free);
+                      windows, options, arrival_free, by_labels);
   }
   // The energy cost of part j between two times; +inf where it misses a window or its time.
   double part_cost_J(std::size_t j, double departure_s, double arrival_s) const {
@@ -306,6 +306,19 @@ bool solve_parts(const Journey& jy, TimingJourneySolution& out,
     // the part's windows is kept: feasible, and reported as such (the latest arrival is tried
     // first, as energy falls with running time).
     if (!o.holds) o = earlier_arrivals(jy, j, part, std::move(o), out.summary.warnings);
+    // The last resort: a search whose state carries what the windows need
+    // (dp/timing_label_search.hpp), kept when every window of the part holds on its run.
+    if (!o.holds) {
+      PartOutcome labelled = jy.solve(j, part.departure_s, part.arrival_target_s,
+                                      /*arrival_free=*/false, /*by_labels=*/true);
+      labelled.evaluations += o.evaluations;
+      if (labelled.holds) {
+        o = std::move(labelled);
+      } else {
+        o.evaluations = labelled.evaluations;
+        for (const auto& note : labelled.notes) o.notes.push_back(note);
+      }
+    }
     part.evaluations = o.evaluations;
     part_points[j] = o.points;
     *all_arrive = *all_arrive && jy.ends[j].reaches_end(o.run.sim);

@@ -11,6 +11,7 @@
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
 #include "dp/timing_family_run.hpp"
+#include "dp/timing_label_search.hpp"
 #include "dp/timing_switch_descent.hpp"
 #include "physics/units.hpp"
 
@@ -64,6 +65,8 @@ constexpr int kDescentSimulations = 3000;
 // re-simulations (a run of 15 km at the descent's 2 m step takes about a millisecond).
 constexpr double kStopDescentReach_m = 20000.0;
 constexpr int kStopDescentSimulations = 1500;
+// The label search's time buckets (s), tried in turn (dp/timing_label_search.hpp).
+constexpr double kLabelTimeBuckets_s[] = {1.0, 0.5};
 // RK4 step of a trim's search runs (trim_switch); the result is checked on a fine run.
 constexpr double kCoarseTrimStep_m = 0.5;
 
@@ -1694,7 +1697,7 @@ class PartSolver {
 PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
                        double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
                        const std::vector<TimingWindow>& windows,
-                       const TimingJourneyOptions& options, bool arrival_free) {
+                       const TimingJourneyOptions& options, bool arrival_free, bool by_labels) {
   // Speed windows between stages are banded on the sweep's transitions first (the window
   // itself); when that search ends without a run meeting every window, on the nodes of the
   // stages either side (stricter, PartSolver::bands_at), and that run is kept if it does.
@@ -1921,6 +1924,87 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     descend_stop_end(o);
     return o;
   };
+  // Which side of each passing point's window the run meets (+1 latest, -1 earliest, 0
+  // neither), for a run found outside the price search.
+  auto sides_of = [&](const LambdaRun& run) {
+    std::vector<int> sides;
+    for (const PartPoint& p : points) {
+      const Passing at = passing_at(run.sim.trace, p.s_m);
+      const double tol = options.time_tolerance_s;
+      sides.push_back(finite(p.latest_s) && at.t_s >= p.latest_s - tol       ? 1
+                      : finite(p.earliest_s) && at.t_s <= p.earliest_s + tol ? -1
+                                                                             : 0);
+    }
+    return sides;
+  };
+  // The last resort (dp/timing_label_search.hpp): the label search's run, moved onto its
+  // windows where its re-simulation misses one (a zero-width window at its value, a missed
+  // bound at the bound, the arrival inside its window) by the descent's Newton steps, then
+  // finished as any run.
+  if (by_labels) {
+    PartOutcome o;
+    o.points = points;
+    o.stretch_lambda_J_per_s.assign(points.size() + 1, NAN);
+    o.binding_sign.assign(points.size(), 0);
+    std::vector<LabelWindow> label_windows;
+    for (const PartPoint& p : points) {
+      const TimingWindow& w = windows[p.index];
+      label_windows.push_back({p.s_m, p.earliest_s, p.latest_s, w.min_speed_ms, w.max_speed_ms});
+    }
+    const double earliest = finite(earliest_arrival_s) ? earliest_arrival_s : 0.0;
+    // Its buckets decide which runs it keeps, and a run of the coarser buckets can be lost in
+    // the finer ones' (or the other way round): each bucket size in turn, the first run that
+    // is moved onto every window kept.
+    std::optional<LambdaRun> kept_run;
+    LabelSearchResult found;
+    for (const double bucket_s : kLabelTimeBuckets_s) {
+      LabelSearchOptions label_options;
+      label_options.time_bucket_s = bucket_s;
+      found = label_search(engine, start, end, earliest, target_s, label_windows, label_options,
+                           options.progress);
+      o.evaluations += found.stages;
+      if (!found.run) continue;
+      LambdaRun run = *found.run;
+      if (!holds_on(run)) {
+        int simulations = 0;
+        repair_passing_times(engine, start, run, label_windows, &simulations);
+        o.evaluations += simulations;
+      }
+      if (!holds_on(run)) {
+        // The end (a zero-width arrival or end speed) by the descent's Newton steps on the
+        // switches after the last passing point, which leave the points where they are.
+        SwitchDescentOptions restore_only;
+        restore_only.max_rounds = 1;
+        const SwitchDescentResult moved = descend_switches(
+            engine, start, end, std::clamp(run.sim.running_time_s, earliest, target_s), run,
+            points.empty() ? 0.0 : points.back().s_m, restore_only);
+        o.evaluations += moved.simulations;
+        if (moved.run) run = *moved.run;
+      }
+      if (holds_on(run)) {
+        kept_run = std::move(run);
+        break;
+      }
+    }
+    if (!kept_run) {
+      o.notes.push_back(format_text(
+          "the label search found no run that meets the part's windows (%ld labels on %d "
+          "stages%s)",
+          found.labels, found.stages, found.out_of_budget ? ", stopped at its budget" : ""));
+      return o;
+    }
+    LambdaRun run = std::move(*kept_run);
+    o.run = std::move(run);
+    o.met = o.holds = true;
+    o.notes.push_back(
+        format_text("the part's price searches missed a window; its run is the time-expanded label "
+                    "search's (%ld labels on %d stages), moved onto its windows on the simulator "
+                    "(feasible, possibly not the least energy; its time prices are not reported)",
+                    found.labels, found.stages));
+    o = finished(std::move(o));
+    o.binding_sign = sides_of(o.run);
+    return o;
+  }
   std::optional<Attempt> first;
   try {
     first = attempt(false);

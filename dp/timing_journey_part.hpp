@@ -77,10 +77,13 @@ struct PartOutcome {
 // arrival lies beyond target_s (the slowest run the grid solves reliably), so a run that
 // arrives earlier is inside its window: where no price meets target_s, the latest early run
 // is taken. Throws TimeRequestError (e.g. LongTimeError) when the plain search for the arrival
-// does.
+// does. by_labels: the part is searched by its time-expanded label search instead
+// (dp/timing_label_search.hpp, the last resort where the price searches missed a window), its
+// run moved onto its windows and descended on its switches.
 PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
                        double target_s, double earliest_arrival_s, std::vector<PartPoint> points,
                        const std::vector<TimingWindow>& windows,
-                       const TimingJourneyOptions& options, bool arrival_free = false);
+                       const TimingJourneyOptions& options, bool arrival_free = false,
+                       bool by_labels = false);
 
 }  // namespace ecorail::dp::timing
