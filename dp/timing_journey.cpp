@@ -308,7 +308,7 @@ bool solve_parts(const Journey& jy, TimingJourneySolution& out,
     if (!o.holds) o = earlier_arrivals(jy, j, part, std::move(o), out.summary.warnings);
     // The last resort: a search whose state carries what the windows need
     // (dp/timing_label_search.hpp), kept when every window of the part holds on its run.
-    if (!o.holds) {
+    if (!o.holds && jy.options.label_search_last_resort) {
       PartOutcome labelled = jy.solve(j, part.departure_s, part.arrival_target_s,
                                       /*arrival_free=*/false, /*by_labels=*/true);
       labelled.evaluations += o.evaluations;
@@ -519,6 +519,7 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   trial.engine.grid.dv_kmh = std::max(options.engine.grid.dv_kmh, 0.5);
   trial.engine.grid.substep_m = std::max(options.engine.grid.substep_m, 5.0);
   trial.descend_on_switches = false;
+  trial.label_search_last_resort = false;
   const auto solve_trial = [&](const std::vector<TimingWindow>& w) {
     return solve_windows(train, track, w, trial, id);
   };

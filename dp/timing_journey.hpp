@@ -38,6 +38,10 @@ struct TimingJourneyOptions {
   // (dp/timing_switch_descent.hpp); off for the speed pins' trial solves, which only compare
   // times.
   bool descend_on_switches = true;
+  // A part still missing a window after its price searches is searched by the time-expanded
+  // label search (dp/timing_label_search.hpp); off for the speed pins' trial solves, whose
+  // comparisons a run found that way (feasible, its energy a heuristic's) would mislead.
+  bool label_search_last_resort = true;
   // Called after each price evaluation of a part ("price evaluation", the part's count, 0; a part
   // without binding windows searches one price: "lambda evaluation"): a long journey shows its
   // progress, and a caller may stop it by throwing from here.
