@@ -1938,9 +1938,9 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
     return sides;
   };
   // The last resort (dp/timing_label_search.hpp): the label search's run, moved onto its
-  // windows where its re-simulation misses one (a zero-width window at its value, a missed
-  // bound at the bound, the arrival inside its window) by the descent's Newton steps, then
-  // finished as any run.
+  // windows where its re-simulation misses one (each passing time by one switch before it,
+  // repair_passing_times; a zero-width end by the descent's Newton steps on the switches after
+  // the last passing point), then finished as any run.
   if (by_labels) {
     PartOutcome o;
     o.points = points;
@@ -1970,7 +1970,7 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
         repair_passing_times(engine, start, run, label_windows, &simulations);
         o.evaluations += simulations;
       }
-      if (!holds_on(run)) {
+      if (!holds_on(run) && earliest <= target_s) {
         // The end (a zero-width arrival or end speed) by the descent's Newton steps on the
         // switches after the last passing point, which leave the points where they are.
         SwitchDescentOptions restore_only;
@@ -1993,8 +1993,7 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
           found.labels, found.stages, found.out_of_budget ? ", stopped at its budget" : ""));
       return o;
     }
-    LambdaRun run = std::move(*kept_run);
-    o.run = std::move(run);
+    o.run = std::move(*kept_run);
     o.met = o.holds = true;
     o.notes.push_back(
         format_text("the part's price searches missed a window; its run is the time-expanded label "
