@@ -1692,6 +1692,14 @@ class PartSolver {
   int evaluations_ = 0;
 };
 
+// +1 when a run passing p at t_s meets its latest bound (within tol_s or past it), -1 its
+// earliest, 0 neither.
+int time_side(const PartPoint& p, double t_s, double tol_s) {
+  if (finite(p.latest_s) && t_s >= p.latest_s - tol_s) return 1;
+  if (finite(p.earliest_s) && t_s <= p.earliest_s + tol_s) return -1;
+  return 0;
+}
+
 }  // namespace
 
 PartOutcome solve_part(const SectionEngine& engine, const StartState& start, const EndCheck& end,
@@ -1746,8 +1754,7 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
       HeldPassing h{p.s_m, NAN, NAN};
       if (finite(p.earliest_s) && p.earliest_s == p.latest_s) {
         h.time_s = p.earliest_s;
-      } else if ((finite(p.latest_s) && at.t_s >= p.latest_s - tol_t) ||
-                 (finite(p.earliest_s) && at.t_s <= p.earliest_s + tol_t)) {
+      } else if (time_side(p, at.t_s, tol_t) != 0) {
         h.time_s = at.t_s;
       }
       if (finite(w.min_speed_ms) && w.min_speed_ms == w.max_speed_ms) {
@@ -1929,11 +1936,7 @@ PartOutcome solve_part(const SectionEngine& engine, const StartState& start, con
   auto sides_of = [&](const LambdaRun& run) {
     std::vector<int> sides;
     for (const PartPoint& p : points) {
-      const Passing at = passing_at(run.sim.trace, p.s_m);
-      const double tol = options.time_tolerance_s;
-      sides.push_back(finite(p.latest_s) && at.t_s >= p.latest_s - tol       ? 1
-                      : finite(p.earliest_s) && at.t_s <= p.earliest_s + tol ? -1
-                                                                             : 0);
+      sides.push_back(time_side(p, passing_at(run.sim.trace, p.s_m).t_s, options.time_tolerance_s));
     }
     return sides;
   };

@@ -176,8 +176,8 @@ LabelSearchResult label_search(const SectionEngine& engine, const StartState& st
   const double e0 = 0.5 * start.speed_ms * start.speed_ms;
   cur.push_back({e0, 0.0, 0.0});
   back[0].push_back({});
-  // Bucket of a label: index into next, by (speed, time) buckets (dense over the stage's
-  // range of times, which is known once the stage's labels are made: a hash would do as well).
+  // A label's bucket is a key of its (speed, time) buckets; the stage's labels are sorted by
+  // key, then by cost.
   const int speed_buckets = static_cast<int>(std::ceil(v_top / o.speed_bucket_ms)) + 2;
   std::vector<std::pair<std::int64_t, std::int32_t>> keyed;
   for (int j = 0; j < stages; ++j) {
@@ -211,7 +211,6 @@ LabelSearchResult label_search(const SectionEngine& engine, const StartState& st
         made_back.push_back({static_cast<std::int32_t>(i), c});
       }
     }
-    // One label per bucket, the least energy.
     keyed.clear();
     for (std::size_t k = 0; k < made.size(); ++k) {
       const std::int64_t vb = std::clamp(static_cast<std::int64_t>(std::lround(
@@ -260,7 +259,6 @@ LabelSearchResult label_search(const SectionEngine& engine, const StartState& st
     if (cur[i].cost < cur[best].cost) best = i;
   }
   out.dp_cost_J = cur[best].cost;
-  out.dp_time_s = cur[best].t;
   std::vector<Control> controls(stages);
   std::int32_t idx = static_cast<std::int32_t>(best);
   for (int j = stages; j >= 1; --j) {
@@ -276,7 +274,6 @@ LabelSearchResult label_search(const SectionEngine& engine, const StartState& st
     }
   }
   run.sim = engine.simulate(run.program, start);
-
   run.cost_J = engine.energy_cost_J(run.sim);
   out.run = std::move(run);
   return out;

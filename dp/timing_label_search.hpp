@@ -67,7 +67,6 @@ struct LabelWindow {
 struct LabelSearchResult {
   std::optional<LambdaRun> run;  // re-simulated at the engine's fine step
   double dp_cost_J = NAN;        // the run's cost in the search's own integration
-  double dp_time_s = NAN;        // and its arrival there
   long labels = 0;               // kept over all stages
   long advances = 0;
   int stages = 0;
