@@ -20,8 +20,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "data/train_io.hpp"
 #include "dp/section_engine.hpp"
@@ -56,6 +58,9 @@ physics::Route rise_track() {
 struct Journey {
   std::vector<TimingWindow> windows;
   double witness_J = 0.0;
+  physics::SimulationResult witness_sim;
+  // The witness at each passing point (not the start or the stop).
+  std::vector<double> witness_t_s, witness_v_ms;
 };
 
 // A random journey around a random witness run (see the file's comment); false for a witness
@@ -71,6 +76,13 @@ bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng,
   const double v0 = witness.start_speed_ms;
   const physics::SimulationResult& w = witness.sim;
   out->witness_J = w.energy.traction_work_J;
+  out->witness_sim = w;
+  for (const double at_m : s) {
+    double t = NAN, v = NAN;
+    ecorail::dp::timing_test::passing(w, at_m, &t, &v);
+    out->witness_t_s.push_back(t);
+    out->witness_v_ms.push_back(v);
+  }
   if (mode == 2) {
     out->windows = ecorail::dp::timing_test::zero_width_windows(witness, rng);
     return true;
@@ -116,6 +128,39 @@ void print_journey(const Journey& j) {
   }
 }
 
+// One journey's solution against its witness, stretch by stretch between its windows (traction
+// kJ, passing time and speed), and each part's program (from_m:control), on stderr.
+void print_against_witness(const Journey& j, const ecorail::dp::TimingJourneySolution& sol,
+                           double ratio, double took_s) {
+  for (std::size_t k = 0; k + 1 < j.windows.size(); ++k) {
+    const double a = j.windows[k].position_m, b = j.windows[k + 1].position_m;
+    double e = 0.0;  // each part's trace starts at 0 m
+    for (std::size_t q = 0; q < sol.journey.sections.size() && q < sol.parts.size(); ++q) {
+      const double off = sol.parts[q].start_m;
+      e += ecorail::dp::timing_test::traction_work_between_J(sol.journey.sections[q].run.sim,
+                                                             a - off, b - off);
+    }
+    std::fprintf(stderr,
+                 "  %.1f-%.1f m: %.1f kJ (witness %.1f kJ), then %.3f s, %.3f m/s (witness %.3f s, "
+                 "%.3f m/s)\n",
+                 a, b, e / 1e3,
+                 ecorail::dp::timing_test::traction_work_between_J(j.witness_sim, a, b) / 1e3,
+                 sol.windows[k + 1].time_s, sol.windows[k + 1].speed_ms,
+                 k < j.witness_t_s.size() ? j.witness_t_s[k] : j.witness_sim.running_time_s,
+                 k < j.witness_v_ms.size() ? j.witness_v_ms[k] : 0.0);
+  }
+  for (std::size_t q = 0; q < sol.journey.sections.size(); ++q) {
+    std::fprintf(stderr, "  part %zu:", q + 1);
+    for (const physics::ProgramStep& st : sol.journey.sections[q].run.program) {
+      std::fprintf(stderr, " %.1f:%d", st.from_m, static_cast<int>(st.control));
+    }
+    std::fprintf(stderr, "\n");
+  }
+  std::fprintf(stderr, "%.1f kJ, %.4f of its witness, %.1f s, %d evaluations\n",
+               sol.summary.traction_energy_kJ, ratio, took_s, sol.summary.evaluations);
+  for (const std::string& w : sol.summary.warnings) std::fprintf(stderr, "  %s\n", w.c_str());
+}
+
 // The bench's coarse grid: --ds 10 --dv 0.5 (substeps of 5 m).
 ecorail::dp::TimingJourneyOptions coarse_options() {
   ecorail::dp::TimingJourneyOptions o;
@@ -134,6 +179,11 @@ void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourne
   const ecorail::dp::SectionEngine engine(train, track, coarse_options().engine);
   int met = 0, missed = 0, dearer = 0;
   double worst_ratio = 0.0, slowest_s = 0.0;
+  // ECORAIL_BENCH_JOURNEY=K solves only the sample's journey K (1-based; the others are still
+  // drawn, so K is the same journey as in the whole sample's run) and prints its windows and its
+  // solution against its witness stretch by stretch: where a dearer run loses its energy.
+  const char* only_env = std::getenv("ECORAIL_BENCH_JOURNEY");
+  const int only = only_env ? std::atoi(only_env) : 0;
   for (auto _ : state) {
     std::mt19937 rng(static_cast<unsigned>(state.range(1)));
     met = missed = dearer = 0;
@@ -142,6 +192,12 @@ void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourne
       Journey j;
       if (!random_journey(engine, rng, mode, &j)) continue;
       ++made;
+      if (only > 0 && made != only) continue;
+      if (only > 0) {
+        std::fprintf(stderr, "journey %d:", made);
+        print_journey(j);
+        std::fprintf(stderr, "\n");
+      }
       const auto t0 = std::chrono::steady_clock::now();
       const ecorail::dp::TimingJourneySolution sol =
           ecorail::dp::solve_timing_journey(train, track, j.windows, solving);
@@ -163,6 +219,7 @@ void run_random_windows(benchmark::State& state, const ecorail::dp::TimingJourne
       ++met;
       const double ratio = sol.summary.traction_energy_kJ * 1e3 / j.witness_J;
       worst_ratio = std::max(worst_ratio, ratio);
+      if (only > 0) print_against_witness(j, sol, ratio, took_s);
       if (ratio > 1.001) {
         ++dearer;
         std::fprintf(stderr, "dearer (journey %d, %.4f of its witness):", made, ratio);

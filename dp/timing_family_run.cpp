@@ -75,11 +75,14 @@ double find_root(F f, double lo, double hi, Done done) {
 // The end of the set {f >= -tol} inside [lo, hi], where f is monotone and may be flat near 0
 // on that side (an envelope that brakes the run to the end speed whatever the last phase
 // does): bisected to narrowest_m, the point on the f >= -tol side; hi (rising: lo) when all of
-// [lo, hi] is in the set; NaN when none of it is. rising: f grows with x.
+// [lo, hi] is in the set, unless `bracket` asks for the end to lie inside [lo, hi] (a guess
+// at where it lies, not the whole range: the end may lie beyond it); NaN when none of it is.
+// rising: f grows with x.
 template <class F>
-double boundary(F f, double lo, double hi, double tol, double narrowest_m, bool rising) {
+double boundary(F f, double lo, double hi, double tol, double narrowest_m, bool rising,
+                bool bracket) {
   const bool lo_in = f(lo) >= -tol, hi_in = f(hi) >= -tol;
-  if (lo_in && hi_in) return rising ? lo : hi;
+  if (lo_in && hi_in) return bracket ? NAN : (rising ? lo : hi);
   if (!lo_in && !hi_in) return NAN;
   for (int it = 0; it < kBisections && hi - lo > narrowest_m; ++it) {
     const double m = 0.5 * (lo + hi);
@@ -271,9 +274,9 @@ class FamilySearch {
     double s2 = NAN;
     if (std::isfinite(stage.s2_lo)) {
       s2 = boundary(f, std::clamp(stage.s2_lo, lo, hi), std::clamp(stage.s2_hi, lo, hi), tol,
-                    stage.narrowest_m, rising);
+                    stage.narrowest_m, rising, /*bracket=*/true);
     }
-    if (!std::isfinite(s2)) s2 = boundary(f, lo, hi, tol, stage.narrowest_m, rising);
+    if (!std::isfinite(s2)) s2 = boundary(f, lo, hi, tol, stage.narrowest_m, rising, false);
     if (!std::isfinite(s2)) return std::nullopt;
     Candidate c;
     c.program = base;

@@ -314,6 +314,7 @@ bool solve_parts(const Journey& jy, TimingJourneySolution& out,
       labelled.evaluations += o.evaluations;
       if (labelled.holds) {
         o = std::move(labelled);
+        part.by_label_search = true;
       } else {
         o.evaluations = labelled.evaluations;
         for (const auto& note : labelled.notes) o.notes.push_back(note);
@@ -472,6 +473,19 @@ void fill_totals(const Journey& jy, bool all_met, bool all_arrive, const std::st
 
 namespace {
 
+double first_departure_s(const std::vector<TimingWindow>& windows) {
+  return finite(windows[0].earliest_s) ? windows[0].earliest_s : 0.0;
+}
+
+// Steps 1-2: the parts and their flat-out models, then the earliest time each point can be
+// reached from the departure at departure0_s (WindowInfeasibleError for a window no run meets).
+std::vector<double> plan_parts(const physics::Train& train, const physics::Route& track,
+                               Journey& jy, double departure0_s, TimingJourneySolution& out) {
+  const std::vector<std::unique_ptr<FlatOutModel>> flat_out = build_parts(train, track, jy, out);
+  return earliest_times(jy.windows, jy.bounds, flat_out, jy.starts, departure0_s, jy.tol_t,
+                        jy.tol_v);
+}
+
 // The journey as its windows ask (steps 1-7).
 TimingJourneySolution solve_windows(const physics::Train& train, const physics::Route& track,
                                     const std::vector<TimingWindow>& windows,
@@ -480,11 +494,8 @@ TimingJourneySolution solve_windows(const physics::Train& train, const physics::
   check_structure(windows, track.length_m());
   Journey jy(windows, options);
   TimingJourneySolution out;
-  const std::vector<std::unique_ptr<FlatOutModel>> flat_out =
-      build_parts(train, track, jy, out);  // step 1
-  const double departure0 = finite(windows[0].earliest_s) ? windows[0].earliest_s : 0.0;
-  const std::vector<double> earliest =  // step 2
-      earliest_times(windows, jy.bounds, flat_out, jy.starts, departure0, jy.tol_t, jy.tol_v);
+  const double departure0 = first_departure_s(windows);
+  const std::vector<double> earliest = plan_parts(train, track, jy, departure0, out);  // 1-2
   build_engines(train, jy, out);
   const std::vector<char> overlaps = plan_part_times(jy, earliest, departure0, out);  // step 3
   split_overlapping_stops(jy, overlaps, out);                                         // step 4
@@ -499,6 +510,22 @@ TimingJourneySolution solve_windows(const physics::Train& train, const physics::
       record_windows(jy, part_points, binding_sign, bind_slack, out) && all_arrive;  // step 6
   fill_totals(jy, all_met, all_arrive, id, t0, out);                                 // step 7
   return out;
+}
+
+// Whether the journey is refused before any search (steps 1-2: its layout, and flat-out runs
+// that cannot meet a window); cheap, no grid is built.
+bool refused_before_search(const physics::Train& train, const physics::Route& track,
+                           const std::vector<TimingWindow>& windows,
+                           const TimingJourneyOptions& options) {
+  try {
+    check_structure(windows, track.length_m());
+    Journey jy(windows, options);
+    TimingJourneySolution out;
+    plan_parts(train, track, jy, first_departure_s(windows), out);
+  } catch (const TimeRequestError&) {  // a window no run meets (WindowInfeasibleError)
+    return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -523,7 +550,10 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   const auto solve_trial = [&](const std::vector<TimingWindow>& w) {
     return solve_windows(train, track, w, trial, id);
   };
-  return with_speeds_pinned(windows, solve(windows), solve, solve_trial);
+  const auto refused = [&](const std::vector<TimingWindow>& w) {
+    return refused_before_search(train, track, w, trial);
+  };
+  return with_speeds_pinned(windows, solve(windows), solve, solve_trial, refused);
 }
 
 }  // namespace ecorail::dp

@@ -77,6 +77,9 @@ struct TimingPart {
   // Price of each stretch between consecutive timing points of the part (J/s), first to last.
   std::vector<double> stretch_lambda_J_per_s;
   int evaluations = 0;
+  // Its run is the label search's (dp/timing_label_search.hpp, the last resort where the price
+  // searches missed a window): feasible, its energy a heuristic's.
+  bool by_label_search = false;
 };
 
 struct TimingJourneySummary {

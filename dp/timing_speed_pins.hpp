@@ -10,8 +10,10 @@
 // its time chosen by golden section between the times the run passes the points either side
 // (each evaluation one solve of the part that holds it, from its departure), and the journey
 // is kept so when it costs less than the plain search's run. Where the plain search misses a
-// window, a point that asks for one time at a speed it leaves free is pinned the same way, its
-// speed searched within half the run's speed there either side.
+// window, or runs the part that holds it by the label search (a heuristic's energy), a point
+// that asks for one time at a speed it leaves free is pinned the same way, its speed searched
+// within half the run's speed there either side; a part that a pin leaves to the label search
+// has its own such points pinned next.
 #pragma once
 
 #include <functional>
@@ -27,15 +29,20 @@ bool asks_one_speed_at_a_free_time(const TimingWindow& w);
 bool asks_one_time_at_a_free_speed(const TimingWindow& w);
 
 using JourneySolve = std::function<TimingJourneySolution(const std::vector<TimingWindow>&)>;
+// Whether a journey is refused before any search (flat-out runs cannot meet a window).
+using JourneyRefused = std::function<bool(const std::vector<TimingWindow>&)>;
 
 // plain is `windows` solved (by solve). Where windows has passing points that ask for one
-// speed at a free time, or (plain missing a window) one time at a free speed (at most
-// kMaxSpeedPins, on a journey of at most kSpeedPinReach_m), the journey with them pinned as
-// above, when every window holds on it and it costs less than plain; plain otherwise. Its windows
-// are reported as asked, its evaluations and wall time count every solve. trial_solve solves the
-// golden section's trials (a coarser grid).
+// speed at a free time, or (plain missing a window, or a part of plain run by the label search)
+// one time at a free speed (at most kMaxSpeedPins, on a journey of at most kSpeedPinReach_m),
+// the journey with them pinned as above, when every window holds on it and it costs less than
+// plain; plain otherwise. Its windows are reported as asked; its evaluations and wall time count
+// every solve, also when plain is returned. trial_solve solves the golden section's trials (a
+// coarser grid); refused narrows a time's bracket to the times a run can meet before the golden
+// section starts.
 TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& windows,
                                          TimingJourneySolution plain, const JourneySolve& solve,
-                                         const JourneySolve& trial_solve);
+                                         const JourneySolve& trial_solve,
+                                         const JourneyRefused& refused);
 
 }  // namespace ecorail::dp::timing

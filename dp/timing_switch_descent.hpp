@@ -8,15 +8,15 @@
 // one, and each held passing point one or two more (its time, its speed: a zero-width window,
 // or one the run meets at a bound, held where the run meets it). An end speed the braking
 // envelope holds, whatever a switch does, is left to the envelope; so is the stop, and a
-// switch whose move one way stops the run short is differenced the other way. Each round takes the gradient of the cost and the Jacobian
-// of the equations by finite differences on the simulator, steps along the gradient projected onto
-// the equations' tangent, restores the equations by Newton steps with that Jacobian (each
-// switch weighted by its room, as in the Newton step that meets windows), and keeps the run
-// only when it costs less and meets both; a refused step is tried again shorter, and where the
-// gradient no longer gains (a kink: the envelope, a limit) one switch at a time is tried either
-// way. The search runs at a coarse step (2 m) and its run is finished at the engine's fine
-// step, back onto both equations there (the time within half of kZeroWidthTime_s, the speed
-// within half of kZeroWidthSpeed_ms). So the result is never dearer than the run it starts
+// switch whose move one way stops the run short is differenced the other way. Each round takes the
+// gradient of the cost and the Jacobian of the equations by finite differences on the simulator,
+// steps along the gradient projected onto the equations' tangent, restores the equations by Newton
+// steps with that Jacobian (each switch weighted by its room, as in the Newton step that meets
+// windows), and keeps the run only when it costs less and meets both; a refused step is tried again
+// shorter, and where the gradient no longer gains (a kink: the envelope, a limit) one switch at a
+// time is tried either way. The search runs at a coarse step (2 m) and its run is finished at the
+// engine's fine step, back onto both equations there (the time within half of kZeroWidthTime_s, the
+// speed within half of kZeroWidthSpeed_ms). So the result is never dearer than the run it starts
 // from; a run that misses the equations (a phase added to a shape) is first brought onto them.
 // It is a local optimum of the run's shape, not a proof of the least energy.
 #pragma once

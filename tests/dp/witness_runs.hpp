@@ -4,6 +4,7 @@
 // journey the bench prints can be rebuilt in a test from the same seed.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -67,6 +68,19 @@ inline void passing(const physics::SimulationResult& sim, double s_m, double* t_
     *v_ms = tr[k - 1].v_ms + w * (tr[k].v_ms - tr[k - 1].v_ms);
     return;
   }
+}
+
+// Traction work of a run between two of its positions (J): its trace's positive force over
+// each step, the steps cut at the ends.
+inline double traction_work_between_J(const physics::SimulationResult& sim, double from_m,
+                                      double to_m) {
+  double work = 0.0;
+  for (std::size_t i = 1; i < sim.trace.size(); ++i) {
+    const double from = std::max(sim.trace[i - 1].s_m, from_m);
+    const double to = std::min(sim.trace[i].s_m, to_m);
+    if (to > from) work += std::max(0.0, sim.trace[i].force_N) * (to - from);
+  }
+  return work;
 }
 
 // Zero-width windows around a witness (bench/bench_timing_windows.cpp's start 2): its start
