@@ -59,8 +59,6 @@ struct Journey {
   std::vector<TimingWindow> windows;
   double witness_J = 0.0;
   physics::SimulationResult witness_sim;
-  // The witness at each passing point (not the start or the stop).
-  std::vector<double> witness_t_s, witness_v_ms;
 };
 
 // A random journey around a random witness run (see the file's comment); false for a witness
@@ -77,12 +75,6 @@ bool random_journey(const ecorail::dp::SectionEngine& engine, std::mt19937& rng,
   const physics::SimulationResult& w = witness.sim;
   out->witness_J = w.energy.traction_work_J;
   out->witness_sim = w;
-  for (const double at_m : s) {
-    double t = NAN, v = NAN;
-    ecorail::dp::timing_test::passing(w, at_m, &t, &v);
-    out->witness_t_s.push_back(t);
-    out->witness_v_ms.push_back(v);
-  }
   if (mode == 2) {
     out->windows = ecorail::dp::timing_test::zero_width_windows(witness, rng);
     return true;
@@ -134,6 +126,8 @@ void print_against_witness(const Journey& j, const ecorail::dp::TimingJourneySol
                            double ratio, double took_s) {
   for (std::size_t k = 0; k + 1 < j.windows.size(); ++k) {
     const double a = j.windows[k].position_m, b = j.windows[k + 1].position_m;
+    double witness_t_s = NAN, witness_v_ms = NAN;
+    ecorail::dp::timing_test::passing(j.witness_sim, b, &witness_t_s, &witness_v_ms);
     double e = 0.0;  // each part's trace starts at 0 m
     for (std::size_t q = 0; q < sol.journey.sections.size() && q < sol.parts.size(); ++q) {
       const double off = sol.parts[q].start_m;
@@ -145,9 +139,7 @@ void print_against_witness(const Journey& j, const ecorail::dp::TimingJourneySol
                  "%.3f m/s)\n",
                  a, b, e / 1e3,
                  ecorail::dp::timing_test::traction_work_between_J(j.witness_sim, a, b) / 1e3,
-                 sol.windows[k + 1].time_s, sol.windows[k + 1].speed_ms,
-                 k < j.witness_t_s.size() ? j.witness_t_s[k] : j.witness_sim.running_time_s,
-                 k < j.witness_v_ms.size() ? j.witness_v_ms[k] : 0.0);
+                 sol.windows[k + 1].time_s, sol.windows[k + 1].speed_ms, witness_t_s, witness_v_ms);
   }
   for (std::size_t q = 0; q < sol.journey.sections.size(); ++q) {
     std::fprintf(stderr, "  part %zu:", q + 1);

@@ -394,14 +394,14 @@ TEST_F(TimingZeroWidth, ATractionAndACoastToAPinnedStateIsNoDearerThanTheWitness
 TEST_F(TimingZeroWidth, APartBetweenPinnedStatesThroughATimeIsNoDearerThanTheWitness) {
   timing_test::WitnessRun witness;
   std::vector<TimingWindow> windows = drawn(72, 20, &witness);
-  const double open = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i + 1 < windows.size(); ++i) {
-    double t_s = NAN, v_ms = NAN;
-    timing_test::passing(witness.sim, windows[i].position_m, &t_s, &v_ms);
-    windows[i].earliest_s = windows[i].latest_s = t_s;
-    windows[i].min_speed_ms = windows[i].max_speed_ms = i == 2 ? open : v_ms;
-    if (i == 2) windows[i].min_speed_ms = -open;
-  }
+  // As drawn, 410.4 m pins the state and 1 068.5 m the time; 1 815.5 m gets its time too.
+  ASSERT_EQ(windows[1].min_speed_ms, windows[1].max_speed_ms);
+  ASSERT_EQ(windows[2].earliest_s, windows[2].latest_s);
+  ASSERT_FALSE(std::isfinite(windows[2].max_speed_ms));
+  ASSERT_EQ(windows[3].min_speed_ms, windows[3].max_speed_ms);
+  double t_s = NAN, v_ms = NAN;
+  timing_test::passing(witness.sim, windows[3].position_m, &t_s, &v_ms);
+  windows[3].earliest_s = windows[3].latest_s = t_s;
   const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
