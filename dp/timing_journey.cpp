@@ -9,6 +9,7 @@
 #include "dp/golden_section.hpp"
 #include "dp/regimes.hpp"
 #include "dp/text_format.hpp"
+#include "dp/timing_binding_pins.hpp"
 #include "dp/timing_journey_feasibility.hpp"
 #include "dp/timing_journey_part.hpp"
 #include "dp/timing_speed_pins.hpp"
@@ -553,7 +554,16 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   const auto refused = [&](const std::vector<TimingWindow>& w) {
     return refused_before_search(train, track, w, trial);
   };
-  return with_speeds_pinned(windows, solve(windows), solve, solve_trial, refused);
+  TimingJourneySolution pinned =
+      with_speeds_pinned(windows, solve(windows), solve, solve_trial, refused);
+  // The label search's parts re-solved between pinned states (dp/timing_binding_pins.hpp): its
+  // trials on the asked grid, without the label search (a trial it would rescue is a heuristic's).
+  TimingJourneyOptions unlabelled = options;
+  unlabelled.label_search_last_resort = false;
+  const auto solve_unlabelled = [&](const std::vector<TimingWindow>& w) {
+    return solve_windows(train, track, w, unlabelled, id);
+  };
+  return with_label_runs_pinned(windows, std::move(pinned), solve, solve_unlabelled);
 }
 
 }  // namespace ecorail::dp

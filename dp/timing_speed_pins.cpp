@@ -32,15 +32,14 @@ constexpr int kEdgeSteps = 12;
 // At most this many of the cheapest trials are solved on the asked grid for a pin's value.
 constexpr std::size_t kFinalTries = 3;
 
-// The journey's energy cost by its objective; +inf when a window is missed.
-double cost_of(const TimingJourneySolution& s) {
+}  // namespace
+
+double journey_cost_J(const TimingJourneySolution& s) {
   if (!s.windows_met || !s.summary.IsSolutionUsable()) return kInf;
   double cost = 0.0;
   for (const JourneySection& section : s.journey.sections) cost += section.run.cost_J;
   return cost;
 }
-
-}  // namespace
 
 bool asks_one_speed_at_a_free_time(const TimingWindow& w) {
   return !w.is_stop() && finite(w.min_speed_ms) && w.min_speed_ms == w.max_speed_ms &&
@@ -129,7 +128,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
       try {
         const TimingJourneySolution s = trial_solve(trial_at(x));
         evaluations += s.summary.evaluations;
-        const double c = cost_of(s);
+        const double c = journey_cost_J(s);
         if (finite(c)) met.push_back({c, x});
         return c;
       } catch (const TimeRequestError&) {  // a state no run reaches (or too slow)
@@ -172,7 +171,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
       try {
         TimingJourneySolution s = solve(w);
         evaluations += s.summary.evaluations;
-        found = finite(cost_of(s));
+        found = finite(journey_cost_J(s));
         if (found || !kept) {
           kept = std::move(s);
           kept_x = met[k].second;
@@ -193,8 +192,8 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
       }
     }
   }
-  const double plain_cost = cost_of(plain);
-  if (!(cost_of(*pinned) < plain_cost)) return plain_after_trying();
+  const double plain_cost = journey_cost_J(plain);
+  if (!(journey_cost_J(*pinned) < plain_cost)) return plain_after_trying();
   TimingJourneySolution out = std::move(*pinned);
   std::string where;
   for (const auto& [i, by_speed] : pins) {
@@ -220,7 +219,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
       "section over solves of its part); %s",
       where.c_str(),
       finite(plain_cost) ? format_text("%.1f kJ less than the plain search",
-                                       units::J_to_kJ(plain_cost - cost_of(out)))
+                                       units::J_to_kJ(plain_cost - journey_cost_J(out)))
                                .c_str()
                          : "every window holds, where the plain search missed one"));
   out.journey.warnings = out.summary.warnings;

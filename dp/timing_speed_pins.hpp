@@ -28,6 +28,10 @@ bool asks_one_speed_at_a_free_time(const TimingWindow& w);
 // Whether w asks for one time at a speed it leaves free (a passing point).
 bool asks_one_time_at_a_free_speed(const TimingWindow& w);
 
+// A solved journey's energy cost by its objective; +inf when a window is missed or the solve
+// is not usable.
+double journey_cost_J(const TimingJourneySolution& s);
+
 using JourneySolve = std::function<TimingJourneySolution(const std::vector<TimingWindow>&)>;
 // Whether a journey is refused before any search (flat-out runs cannot meet a window).
 using JourneyRefused = std::function<bool(const std::vector<TimingWindow>&)>;
