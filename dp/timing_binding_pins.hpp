@@ -1,15 +1,15 @@
 // The parts of a timing-point journey that the label search ran (dp/timing_label_search.hpp,
 // the last resort where every price search missed a window), re-solved between pinned states.
 // The label search's run is feasible but its energy is a heuristic's: 39 % above a witness run
-// on a part held back twice (tests/dp/test_timing_label_search.cpp), 9 % above the best run
-// found for `hb2` (docs/ttobench.md, "The last resort"). Where that run passes a point at (within
+// on a part held back twice (tests/dp/test_timing_label_search.cpp), 7.9 % above an independent
+// witness on `hb2` (tests/cli/held_back_twice.sh). Where that run passes a point at (within
 // kBindingSlack_s of) one of its time bounds, the bound binds, and a point whose time and speed
 // are fixed splits the part in two that couple only through that speed, as a stop splits a
 // journey; each piece is then a part from one pinned state to another, which the price searches
 // meet exactly. So every such point is pinned at its bound with the run's speed there, and the
 // speeds are searched jointly (Nelder-Mead over solves of the stretch on the asked grid: two
 // points 100 m apart that must be 9 s apart want the same speed, which a search of one speed at
-// a time does not find; on the speed pins' coarser trial grid the search settled 0.8 % higher).
+// a time does not find; on the speed pins' coarser trial grid it settled up to 0.8 % higher).
 // The journey at the best speeds replaces the label search's when every window holds on it and
 // it costs less. Not exact: the times stay at the bounds the label run touched, and the speeds
 // are a local search's.
