@@ -7,12 +7,14 @@
 // are fixed splits the part in two that couple only through that speed, as a stop splits a
 // journey; each piece is then a part from one pinned state to another, which the price searches
 // meet exactly. So every such point is pinned at its bound with the run's speed there, and the
-// speeds are searched jointly (Nelder-Mead over solves of the stretch on the asked grid: two
-// points 100 m apart that must be 9 s apart want the same speed, which a search of one speed at
-// a time does not find; on the speed pins' coarser trial grid it settled up to 0.8 % higher).
-// The journey at the best speeds replaces the label search's when every window holds on it and
-// it costs less. Not exact: the times stay at the bounds the label run touched, and the speeds
-// are a local search's.
+// speeds are searched jointly. The stretch's energy is then a sum along a chain, one piece
+// between each two pins, each a function of the speeds at its two ends, so the search is a
+// lattice of speeds moved and refined with a DP along the chain (dp/chain_lattice_search.hpp):
+// every speed moves at once (two points 100 m apart that must be 9 s apart want the same speed,
+// which a search of one speed at a time does not find), and each lattice costs only the
+// solves of its new pieces (none after a piece that no run meets). The journey at the best speeds
+// replaces the label search's when every window holds on it and it costs less. Not exact: the times
+// stay at the bounds the label run touched, and the speeds are a local search's.
 #pragma once
 
 #include <vector>

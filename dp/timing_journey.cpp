@@ -300,15 +300,10 @@ bool solve_parts(const Journey& jy, TimingJourneySolution& out,
           j + 1, latest_ok));
       o = jy.solve(j, part.departure_s, latest_ok, /*arrival_free=*/true);
     }
-    // A search can end with a window missed where an earlier latest arrival, which binds, meets
-    // every one (an earliest bound that holds the run back just before a latest one that needs
-    // it fast: on a 3 km part missed with the arrival searched at 500.8 s, met at 450.7 s). So
-    // earlier arrivals are tried, a tenth of the part's time apart, and the first run that meets
-    // the part's windows is kept: feasible, and reported as such (the latest arrival is tried
-    // first, as energy falls with running time).
-    if (!o.holds) o = earlier_arrivals(jy, j, part, std::move(o), out.summary.warnings);
-    // The last resort: a search whose state carries what the windows need
-    // (dp/timing_label_search.hpp), kept when every window of the part holds on its run.
+    // Where the price search misses a window, the label search (dp/timing_label_search.hpp),
+    // whose state carries what the windows need, is kept when every window of the part holds on
+    // its run; where a part is run by it, its run is re-solved between the states it pins where
+    // it binds a time (dp/timing_binding_pins.hpp, after every part is solved).
     if (!o.holds && jy.options.label_search_last_resort) {
       PartOutcome labelled = jy.solve(j, part.departure_s, part.arrival_target_s,
                                       /*arrival_free=*/false, /*by_labels=*/true);
@@ -321,6 +316,16 @@ bool solve_parts(const Journey& jy, TimingJourneySolution& out,
         for (const auto& note : labelled.notes) o.notes.push_back(note);
       }
     }
+    // Else an earlier latest arrival, which binds, can meet every window (an earliest bound
+    // that holds the run back just before a latest one that needs it fast: on a 3 km part
+    // missed with the arrival searched at 500.8 s, met at 450.7 s). So earlier arrivals are
+    // tried, a tenth of the part's time apart, and the first run that meets the part's windows
+    // is kept: feasible, and reported as such (the latest arrival is tried first, as energy
+    // falls with running time). They come after the label search: each is a search of the part
+    // with a free arrival (on hb2, tests/cli/held_back_twice.sh, three of them took 107 s of
+    // the journey's 318 s and met nothing; with the label search first, its part is run in 40 s
+    // instead of 136 s).
+    if (!o.holds) o = earlier_arrivals(jy, j, part, std::move(o), out.summary.warnings);
     part.evaluations = o.evaluations;
     part_points[j] = o.points;
     *all_arrive = *all_arrive && jy.ends[j].reaches_end(o.run.sim);

@@ -24,22 +24,12 @@ constexpr double kSpeedPinReach_m = 10000.0;
 // lower than a crawl; at most kPinSteps steps.
 constexpr double kPinTimeTolerance_s = 0.5;
 constexpr double kPinSpeedTolerance_ms = 0.05;
-constexpr double kLowestPinned_ms = 0.5;
 constexpr int kPinSteps = 8;
 // A time bracket's ends are bisected to the golden section's tolerance, in at most kEdgeSteps
 // checks each.
 constexpr int kEdgeSteps = 12;
-// At most this many of the cheapest trials are solved on the asked grid for a pin's value.
-constexpr std::size_t kFinalTries = 3;
 
 }  // namespace
-
-double journey_cost_J(const TimingJourneySolution& s) {
-  if (!s.windows_met || !s.summary.IsSolutionUsable()) return kInf;
-  double cost = 0.0;
-  for (const JourneySection& section : s.journey.sections) cost += section.run.cost_J;
-  return cost;
-}
 
 bool asks_one_speed_at_a_free_time(const TimingWindow& w) {
   return !w.is_stop() && finite(w.min_speed_ms) && w.min_speed_ms == w.max_speed_ms &&
@@ -163,25 +153,17 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
     // window. When none does, the cheapest trial's journey is kept and the next pin searched
     // from it (a journey with two time points may need both pinned).
     std::sort(met.begin(), met.end());
-    std::optional<TimingJourneySolution> kept;
-    double kept_x = NAN;
-    bool found = false;
-    for (std::size_t k = 0; k < met.size() && k < kFinalTries && !found; ++k) {
-      w[i] = pinned_at(met[k].second);
-      try {
-        TimingJourneySolution s = solve(w);
-        evaluations += s.summary.evaluations;
-        found = finite(journey_cost_J(s));
-        if (found || !kept) {
-          kept = std::move(s);
-          kept_x = met[k].second;
-        }
-      } catch (const TimeRequestError&) {
-      }
-    }
-    if (!kept) return plain_after_trying();
-    w[i] = pinned_at(kept_x);
-    pinned = std::move(kept);
+    CheapestTrialJourney kept = solve_cheapest_in_turn(
+        met.size(),
+        [&](std::size_t k) {
+          std::vector<TimingWindow> journey = w;
+          journey[i] = pinned_at(met[k].second);
+          return journey;
+        },
+        solve, &evaluations);
+    if (!kept.solution) return plain_after_trying();
+    w[i] = pinned_at(met[kept.index].second);
+    pinned = std::move(kept.solution);
     // A pin splits its part in two, and one of them may now be the label search's (a point
     // pinned after another point at one time): that point is pinned too, within the limit.
     for (int k = 1; k + 1 < n && static_cast<int>(pins.size()) < kMaxSpeedPins; ++k) {

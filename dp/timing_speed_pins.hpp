@@ -16,10 +16,10 @@
 // has its own such points pinned next.
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "dp/timing_journey.hpp"
+#include "dp/timing_pin_trials.hpp"
 
 namespace ecorail::dp::timing {
 
@@ -27,14 +27,6 @@ namespace ecorail::dp::timing {
 bool asks_one_speed_at_a_free_time(const TimingWindow& w);
 // Whether w asks for one time at a speed it leaves free (a passing point).
 bool asks_one_time_at_a_free_speed(const TimingWindow& w);
-
-// A solved journey's energy cost by its objective; +inf when a window is missed or the solve
-// is not usable.
-double journey_cost_J(const TimingJourneySolution& s);
-
-using JourneySolve = std::function<TimingJourneySolution(const std::vector<TimingWindow>&)>;
-// Whether a journey is refused before any search (flat-out runs cannot meet a window).
-using JourneyRefused = std::function<bool(const std::vector<TimingWindow>&)>;
 
 // plain is `windows` solved (by solve). Where windows has passing points that ask for one
 // speed at a free time, or (plain missing a window, or a part of plain run by the label search)
