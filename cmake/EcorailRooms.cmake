@@ -34,9 +34,6 @@ function(ecorail_room room)
   add_library(ecorail::${room} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${room} POSITION_INDEPENDENT_CODE ON)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
-  # The standard headers nearly every source includes, parsed once per room.
-  target_precompile_headers(${target} PRIVATE <algorithm> <cmath> <functional> <map> <memory>
-    <stdexcept> <string> <vector>)
   set(below "")
   foreach(r ${ROOM_ROOMS})
     list(APPEND below ecorail_${r})
