@@ -76,10 +76,6 @@ py::array_t<double> stop_times(const recovery::Plan& plan,
   return a;
 }
 
-std::string fspath(const py::object& path) {
-  return py::str(py::module_::import("os").attr("fspath")(path));
-}
-
 // What a delay study runs on: the plan (None: the reference plan; a path: a timetable CSV; an
 // ecorail.delay.Plan), its stations and their section library, as the program sets them up.
 struct PlanSetup {

@@ -28,10 +28,6 @@ struct PyCalibration {
   PyTrain train;  // the base train with the written estimate
 };
 
-std::string fspath(const py::object& path) {
-  return py::str(py::module_::import("os").attr("fspath")(path));
-}
-
 PyEnvelopeFit fit_envelope_py(const py::object& points_path, const std::string& kind_name,
                               const py::object& train, const std::string& form_name, int degree) {
   using namespace fitting;

@@ -18,10 +18,6 @@ data::CurveFormula curve_formula(const std::string& name) {
   bad_argument("curve_resistance", "'600/R' or 'roeckl'", "'" + name + "'");
 }
 
-std::string path_text(const py::object& path) {
-  return py::str(py::module_::import("os").attr("fspath")(path));
-}
-
 }  // namespace
 
 void bind_model(py::module_& m) {
@@ -42,7 +38,7 @@ void bind_model(py::module_& m) {
       .def_static(
           "from_file",
           [](const py::object& path, const std::string& curve_resistance) {
-            const std::string p = path_text(path);
+            const std::string p = fspath(path);
             PyLine l{data::load_line(p), p};
             l.line.curve_formula = curve_formula(curve_resistance);
             return l;
@@ -88,7 +84,7 @@ void bind_model(py::module_& m) {
       .def_static(
           "from_file",
           [](const py::object& path) {
-            const std::string p = path_text(path);
+            const std::string p = fspath(path);
             return PyTrain{data::load_train(p), p};
           },
           py::arg("path"),

@@ -321,7 +321,7 @@ PyFrontier frontier_py(const PyLine& line, const PyTrain& train, const std::stri
 py::object journey_py(const PyLine& line, const PyTrain& train, const py::object& journey_path,
                       double ds_m, double dv_kmh, const std::string& objective,
                       const std::string& cruise, int threads, const py::object& progress) {
-  const std::string path = py::str(py::module_::import("os").attr("fspath")(journey_path));
+  const std::string path = fspath(journey_path);
   const data::TtobenchJourney journey =
       data::journey_from_ttobench(data::read_text_file(path), path);
   dp::TimingJourneyOptions options;

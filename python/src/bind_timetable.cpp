@@ -432,7 +432,7 @@ void add_fleet_args(FleetArgs& a, const std::string& model, const std::string& o
   a.step_s = step_s;
   a.sections_at_m = std::move(sections_at_m);
   if (!power_supply.is_none()) {
-    a.power_supply = py::str(py::module_::import("os").attr("fspath")(power_supply));
+    a.power_supply = fspath(power_supply);
   }
   a.trip_time_s = trip_time_s;
   a.dwell_s = dwell_s;

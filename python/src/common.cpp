@@ -25,6 +25,10 @@ void bad_argument(const std::string& field, const std::string& expected, const s
   throw py::value_error(field + ": expected " + expected + "; got " + got);
 }
 
+std::string fspath(const py::object& path) {
+  return py::str(py::module_::import("os").attr("fspath")(path));
+}
+
 py::object to_python(const nlohmann::json& j) {
   switch (j.type()) {
     case nlohmann::json::value_t::null:

@@ -52,6 +52,9 @@ void require_valid(const Options& options) {
   if (!options.IsValid(&why)) throw InvalidOptions("invalid options: " + why);
 }
 
+// A path argument (str, bytes or os.PathLike) as text: os.fspath(path).
+std::string fspath(const py::object& path);
+
 // ValueError naming a keyword argument: "<field>: expected <what>; got <got>".
 [[noreturn]] void bad_argument(const std::string& field, const std::string& expected,
                                const std::string& got);

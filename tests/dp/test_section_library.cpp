@@ -94,8 +94,8 @@ TEST(FrontierCurve, RejectsTimesThatDoNotIncrease) {
   EXPECT_THROW(FrontierCurve{f}, std::invalid_argument);
 }
 
-std::vector<physics::Route> routes(const physics::Train& train,
-                                   const std::vector<std::string>& stops) {
+std::vector<physics::Route> library_routes(const physics::Train& train,
+                                           const std::vector<std::string>& stops) {
   return data::build_routes(data::default_line(), stops, train);
 }
 
@@ -104,7 +104,7 @@ TEST(SectionLibrary, FrontierInterpolationWithinOneBasisPointOfExactSolves) {
   const physics::Train train = data::default_train();
   SectionLibraryOptions options;
   options.frontier_span_s = 30.0;
-  const SectionLibrary library(train, routes(train, {"A6", "A7", "A8"}), options);
+  const SectionLibrary library(train, library_routes(train, {"A6", "A7", "A8"}), options);
   library.build_frontiers(0, 2, nullptr);
   for (std::size_t i = 0; i < 2; ++i) {
     const FrontierCurve& curve = library.frontier(i);
@@ -125,7 +125,7 @@ TEST(SectionLibrary, FrontierInterpolationWithinOneBasisPointOfExactSolves) {
 
 TEST(SectionLibrary, SecondSolveRebuildsNothing) {
   const physics::Train train = data::default_train();
-  const SectionLibrary library(train, routes(train, {"A6", "A7"}), {});
+  const SectionLibrary library(train, library_routes(train, {"A6", "A7"}), {});
   EXPECT_EQ(library.engine_builds(), 0);  // nothing before first use
   const SectionTimeSolve first = library.solve(0, 110.0);
   EXPECT_EQ(library.engine_builds(), 1);
@@ -158,21 +158,22 @@ TEST(SectionLibrary, StoredFrontierIsUsedUnderItsKeyAndDamagedOneIsRebuilt) {
   SectionLibraryOptions options;
   options.frontier_span_s = 6.0;
   MemoryStore store;
-  const SectionLibrary first(train, routes(train, {"A6", "A7"}), options, "line|train");
+  const SectionLibrary first(train, library_routes(train, {"A6", "A7"}), options, "line|train");
   const double e = first.frontier(0, &store).energy_at(first.min_time_s(0) + 3.0);
   EXPECT_EQ(first.frontier_computations(), 1);
   ASSERT_EQ(store.entries.size(), 1u);
 
-  const SectionLibrary second(train, routes(train, {"A6", "A7"}), options, "line|train");
+  const SectionLibrary second(train, library_routes(train, {"A6", "A7"}), options, "line|train");
   EXPECT_DOUBLE_EQ(second.frontier(0, &store).energy_at(second.min_time_s(0) + 3.0), e);
   EXPECT_EQ(second.frontier_computations(), 0);
   EXPECT_TRUE(second.frontier_from_store(0));
 
   // Another train (key) does not see it; a damaged entry is recomputed.
-  const SectionLibrary other(train, routes(train, {"A6", "A7"}), options, "line|other-train");
+  const SectionLibrary other(train, library_routes(train, {"A6", "A7"}), options,
+                             "line|other-train");
   EXPECT_NE(other.frontier_key(0), first.frontier_key(0));
   store.entries.begin()->second.points[1].running_time_s = -1.0;
-  const SectionLibrary third(train, routes(train, {"A6", "A7"}), options, "line|train");
+  const SectionLibrary third(train, library_routes(train, {"A6", "A7"}), options, "line|train");
   EXPECT_NEAR(third.frontier(0, &store).energy_at(third.min_time_s(0) + 3.0), e, 1e-9 * e);
   EXPECT_EQ(third.frontier_computations(), 1);
   EXPECT_FALSE(third.frontier_from_store(0));

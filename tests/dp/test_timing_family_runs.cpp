@@ -31,17 +31,17 @@
 namespace ecorail::dp {
 namespace {
 
-constexpr double kLength_m = 1000.0;
-constexpr double kExactTime_s = 1e-3;
-constexpr double kExactSpeed_ms = 0.01 / 3.6;
+using timing_test::kExactSpeed_ms;
+using timing_test::kExactTime_s;
+constexpr double kLevelTrack_m = 1000.0;
 
 physics::Route level_track() {
-  return timing_test::rise_track(300.0, 600.0, kLength_m, 0.0, "L0", "L1");
+  return timing_test::rise_track(300.0, 600.0, kLevelTrack_m, 0.0, "L0", "L1");
 }
 
 // A one-part journey: leave at v0_ms, pass the end at t_s between end speeds (m/s; 0, 0: stop).
 std::vector<TimingWindow> journey(double v0_ms, double t_s, double end_min_ms, double end_max_ms) {
-  return {{0.0, 0.0, 0.0, v0_ms, v0_ms}, {kLength_m, t_s, t_s, end_min_ms, end_max_ms}};
+  return {{0.0, 0.0, 0.0, v0_ms, v0_ms}, {kLevelTrack_m, t_s, t_s, end_min_ms, end_max_ms}};
 }
 
 const physics::SimulationResult& solved_run(const TimingJourneySolution& sol) {
@@ -56,7 +56,7 @@ const physics::SimulationResult& solved_run(const TimingJourneySolution& sol) {
 double time_expanded_dp(const physics::Train& train, double v0_ms, double end_ms, double t_s,
                         double ds_m, double dv_ms, double bucket_s) {
   const double inf = std::numeric_limits<double>::infinity();
-  const int stages = static_cast<int>(std::lround(kLength_m / ds_m));
+  const int stages = static_cast<int>(std::lround(kLevelTrack_m / ds_m));
   const int speeds = static_cast<int>(std::floor(units::kmh_to_ms(80.0) / dv_ms)) + 1;
   const int buckets = static_cast<int>(std::ceil((t_s + 1.0) / bucket_s)) + 1;
   const double mass = train.effective_mass_kg();
@@ -116,10 +116,10 @@ double traction_lower_bound_J(const physics::Train& train, double v0_ms, double 
   auto slowest_s = [&](double v_m) {
     double t = 0.0;
     constexpr double kStep_m = 0.1;
-    for (double s = 0.5 * kStep_m; s < kLength_m; s += kStep_m) {
+    for (double s = 0.5 * kStep_m; s < kLevelTrack_m; s += kStep_m) {
       const double v =
           std::max({v_m, std::sqrt(std::max(0.0, v0_ms * v0_ms - 2.0 * d * s)),
-                    std::sqrt(std::max(0.0, end_ms * end_ms - 2.0 * a * (kLength_m - s)))});
+                    std::sqrt(std::max(0.0, end_ms * end_ms - 2.0 * a * (kLevelTrack_m - s)))});
       t += kStep_m / v;
     }
     return t;

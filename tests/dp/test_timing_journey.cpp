@@ -18,20 +18,15 @@
 namespace ecorail::dp {
 namespace {
 
-constexpr double kOpen = std::numeric_limits<double>::infinity();
+using timing_test::coarse_timing;
+using timing_test::kOpen;
+using timing_test::stop_at;
 
 // A 3 km track, level but for a 6 per mille rise in its middle, limit 80 km/h.
 physics::Route test_track() {
   return timing_test::rise_track(1200.0, 1800.0, 3000.0, 6.0, "T0", "T1");
 }
 
-TimingJourneyOptions coarse() {
-  return timing_test::coarse_timing();
-}
-
-TimingWindow stop_at(double s, double earliest, double latest) {
-  return {s, earliest, latest, 0.0, 0.0};
-}
 TimingWindow pass_at(double s, double earliest, double latest) {
   return {s, earliest, latest, -kOpen, kOpen};
 }
@@ -46,13 +41,13 @@ double time_at(const physics::SimulationResult& sim, double s_m) {
 
 // The plain running-time optimum of the whole track (one price).
 TimeSearchResult plain(const physics::Train& train, const physics::Route& route, double time_s) {
-  const SectionEngine engine(train, route, coarse().engine);
+  const SectionEngine engine(train, route, coarse_timing().engine);
   return solve_for_time(engine, time_s, TimeSearchOptions{});
 }
 
 TEST(StagePrices, OnePriceEverywhereIsTheSinglePriceSweepBitForBit) {
   const physics::Train train = data::default_train();
-  const SectionEngine engine(train, test_track(), coarse().engine);
+  const SectionEngine engine(train, test_track(), coarse_timing().engine);
   for (double lambda : {2e5, 6.5e5}) {
     StagePrices prices;
     prices.lambda_J_per_s.assign(engine.grid().stage_count() - 1, lambda);
@@ -68,7 +63,7 @@ TEST(StagePrices, OnePriceEverywhereIsTheSinglePriceSweepBitForBit) {
 
 TEST(StagePrices, AHigherPriceBeforeAPointMakesThatStretchFaster) {
   const physics::Train train = data::default_train();
-  const SectionEngine engine(train, test_track(), coarse().engine);
+  const SectionEngine engine(train, test_track(), coarse_timing().engine);
   const int mid = engine.grid().stage_count() / 2;
   StagePrices cheap, dear;
   cheap.lambda_J_per_s.assign(engine.grid().stage_count() - 1, 3e5);
@@ -89,7 +84,7 @@ TEST(TimingJourney, WindowsThatDoNotBindGiveThePlainOptimum) {
   // A wide passing window at 1500 m and an arrival window ending at 240 s.
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 30, 200),
                                        stop_at(3000, 200, 240)};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "wide");
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing(), "wide");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   EXPECT_TRUE(sol.windows_met);
   const auto& sim = sol.journey.sections.at(0).run.sim;
@@ -113,7 +108,7 @@ TEST(TimingJourney, ABindingLatestWindowIsMetAndOptimal) {
   const double latest = std::floor(t_free - 6.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, latest),
                                        stop_at(3000, 200, 240)};
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const TimingJourneySolution sol = solve_timing_journey(train, track, w, options, "bind");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
@@ -247,10 +242,11 @@ void expect_both_bind_latest(const TimingJourneySolution& sol, std::array<double
 TimingJourneySolution price_search_alone(const physics::Train& train, const physics::Route& track,
                                          const std::vector<TimingWindow>& windows,
                                          const std::string& id) {
-  TimingJourneyOptions options = coarse();
+  TimingJourneyOptions options = coarse_timing();
   options.descend_on_switches = false;
   TimingJourneySolution sol = solve_timing_journey(train, track, windows, options, id);
-  const TimingJourneySolution descended = solve_timing_journey(train, track, windows, coarse(), id);
+  const TimingJourneySolution descended =
+      solve_timing_journey(train, track, windows, coarse_timing(), id);
   EXPECT_TRUE(descended.windows_met);
   EXPECT_LE(descended.journey.sections.at(0).run.sim.energy.traction_work_J,
             sol.journey.sections.at(0).run.sim.energy.traction_work_J);
@@ -278,7 +274,7 @@ TEST(TimingJourney, TwoBindingWindowsInOnePartAreMetAndOptimal) {
   const physics::Route track = test_track();
   const TwoLatest two = two_latest_windows(train, track, {1000.0, 2000.0}, 240.0, 200.0);
   ASSERT_TRUE(two.converged);
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const TimingJourneySolution sol = price_search_alone(train, track, two.windows, "two");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
@@ -312,7 +308,7 @@ TEST(TimingJourney, TwoBindingWindowsOnALongPartAreMetAndNoDearerThanALattice) {
   const physics::Route track = timing_test::rise_track(4000.0, 8000.0, 12000.0, 3.0, "L0", "L1");
   const TwoLatest two = two_latest_windows(train, track, {4000.0, 8000.0}, 700.0, 700.0);
   ASSERT_TRUE(two.converged);
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const TimingJourneySolution sol = price_search_alone(train, track, two.windows, "long");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
@@ -344,10 +340,10 @@ TEST(TimingJourney, ABindingEarliestWindowIsMet) {
   const double earliest = std::ceil(t_free + 5.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, earliest, 400),
                                        stop_at(3000, 200, 240)};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "early");
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing(), "early");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
-  EXPECT_NEAR(sol.windows[1].time_s, earliest, coarse().time_tolerance_s);
+  EXPECT_NEAR(sol.windows[1].time_s, earliest, coarse_timing().time_tolerance_s);
   ASSERT_EQ(sol.windows[1].binds.size(), 1u);
   EXPECT_EQ(sol.windows[1].binds[0], "earliest");
   EXPECT_GT(sol.journey.sections[0].run.sim.energy.traction_work_J,
@@ -365,23 +361,23 @@ TEST(TimingJourney, AnEarliestBoundJustBeforeALatestOneIsMet) {
   const physics::Route track = test_track();
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1000, 120, 400),
                                        pass_at(1100, 0, 126), stop_at(3000, 0, 900)};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse(), "held");
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing(), "held");
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
-  EXPECT_GE(sol.windows[1].time_s, 120.0 - coarse().time_tolerance_s);
-  EXPECT_LE(sol.windows[2].time_s, 126.0 + coarse().time_tolerance_s);
+  EXPECT_GE(sol.windows[1].time_s, 120.0 - coarse_timing().time_tolerance_s);
+  EXPECT_LE(sol.windows[2].time_s, 126.0 + coarse_timing().time_tolerance_s);
   EXPECT_LE(sol.summary.running_time_s, 900.0);
 }
 
 TEST(TimingJourney, AWindowBelowTheFlatOutTimeIsRefusedNamingIt) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
-  const SectionEngine engine(train, track, coarse().engine);
+  const SectionEngine engine(train, track, coarse_timing().engine);
   const double flat_at = time_at(engine.min_time_run(), 1500.0);
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), pass_at(1500, 0, flat_at - 2.0),
                                        stop_at(3000, 200, 240)};
   try {
-    solve_timing_journey(train, track, w, coarse());
+    solve_timing_journey(train, track, w, coarse_timing());
     FAIL() << "an infeasible window was accepted";
   } catch (const WindowInfeasibleError& e) {
     EXPECT_EQ(e.point(), 1);
@@ -395,7 +391,7 @@ TEST(TimingJourney, ARunStartingAtOneMetrePerSecondStartsThere) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
   const std::vector<TimingWindow> w = {{0.0, 0.0, 0.0, 1.0, 1.0}, stop_at(3000, 200, 240)};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing());
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   const auto& trace = sol.journey.sections.at(0).run.sim.trace;
   ASSERT_FALSE(trace.empty());
@@ -412,14 +408,14 @@ TEST(TimingJourney, AMovingStartWithAnOpenTopEndSpeedArrivesOnTime) {
   const physics::Route track = test_track();
   const std::vector<TimingWindow> w = {{0.0, 0.0, 0.0, 1.0, 1.0},
                                        {3000.0, 200.0, 240.0, 1.0, kOpen}};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing());
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   const physics::SimulationResult& sim = sol.journey.sections.at(0).run.sim;
   ASSERT_FALSE(sim.trace.empty());
   EXPECT_DOUBLE_EQ(sim.trace.front().v_ms, 1.0);
-  EXPECT_NEAR(sim.running_time_s, 240.0, coarse().time_tolerance_s);
+  EXPECT_NEAR(sim.running_time_s, 240.0, coarse_timing().time_tolerance_s);
   EXPECT_GE(sim.end_speed_ms, 1.0 - 0.01 / 3.6);
-  EXPECT_NEAR(sol.windows[1].time_s, 240.0, coarse().time_tolerance_s);
+  EXPECT_NEAR(sol.windows[1].time_s, 240.0, coarse_timing().time_tolerance_s);
 }
 
 // Runs that end moving (the last point's speed window reaches above 0). The windows hold in the
@@ -430,7 +426,7 @@ TEST(TimingJourney, AMovingStartWithAnOpenTopEndSpeedArrivesOnTime) {
 TEST(TimingJourney, ARunEndingMovingEndsInsideItsBandAndIsNoDearerThanSimpleRuns) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const double tol_v = units::kmh_to_ms(options.speed_tolerance_kmh);
   auto solve = [&](double min_ms, double max_ms) {
     const std::vector<TimingWindow> w = {stop_at(0, 0, 0), {3000.0, 200, 240, min_ms, max_ms}};
@@ -496,7 +492,7 @@ TEST(TimingJourney, ARunEndingMovingEndsInsideItsBandAndIsNoDearerThanSimpleRuns
 TEST(TimingJourney, ZeroWidthWindowsAtAMovingStartAndEndAreMetExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = test_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const std::vector<TimingWindow> exact_w = {{0.0, 0.0, 0.0, 1.0, 1.0},
                                              {3000.0, 240.0, 240.0, 1.0, 1.0}};
   const std::vector<TimingWindow> wide_w = {{0.0, 0.0, 0.0, 1.0, 1.0},
@@ -523,7 +519,7 @@ TEST(TimingJourney, AStopSplitsTheJourneyIntoPartsWithTheirOwnTimes) {
   const physics::Route track = test_track();
   const std::vector<TimingWindow> w = {stop_at(0, 0, 0), stop_at(1500, 100, 120),
                                        stop_at(1500, 150, 160), stop_at(3000, 250, 270)};
-  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+  const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing());
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_EQ(sol.parts.size(), 2u);
   // Arrive at the latest, depart at the earliest.
@@ -549,7 +545,7 @@ TEST(TimingJourney, AStopWithOneWindowGetsTheBestSplitOfTheTime) {
   auto journey_kJ = [&](double earliest, double latest) {
     const std::vector<TimingWindow> w = {stop_at(0, 0, 0), stop_at(1500, earliest, latest),
                                          stop_at(3000, 240, 240)};
-    const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse());
+    const TimingJourneySolution sol = solve_timing_journey(train, track, w, coarse_timing());
     EXPECT_TRUE(sol.windows_met) << sol.summary.FullReport();
     return sol;
   };

@@ -22,18 +22,16 @@
 namespace ecorail::dp {
 namespace {
 
-constexpr double kOpen = std::numeric_limits<double>::infinity();
-constexpr double kLength_m = 2000.0;
-constexpr double kExactTime_s = 1e-3;
-constexpr double kExactSpeed_ms = 0.01 / 3.6;
+using timing_test::coarse_timing;
+using timing_test::kExactSpeed_ms;
+using timing_test::kExactTime_s;
+using timing_test::kOpen;
+using timing_test::stop_at;
+constexpr double kShortTrack_m = 2000.0;
 
 // A 2 km track: level, a 5 per mille rise from 800 m to 1300 m, limit 80 km/h.
 physics::Route short_track() {
-  return timing_test::rise_track(800.0, 1300.0, kLength_m, 5.0, "X0", "X1");
-}
-
-TimingJourneyOptions coarse() {
-  return timing_test::coarse_timing();
+  return timing_test::rise_track(800.0, 1300.0, kShortTrack_m, 5.0, "X0", "X1");
 }
 
 // Time and speed where a run passes s_m (linear between trace points; NaN if it never does).
@@ -200,7 +198,8 @@ physics::SimulationResult witness(const SectionEngine& engine, std::mt19937& rng
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const double x1 = (0.3 + 0.5 * u(rng)) * s1;
   const double y2 = s1 + (0.1 + 0.4 * u(rng)) * (s2 - s1), x2 = y2 + 30.0 + 60.0 * u(rng);
-  const double y3 = s2 + (0.05 + 0.3 * u(rng)) * (kLength_m - s2), x3 = y3 + 20.0 + 40.0 * u(rng);
+  const double y3 = s2 + (0.05 + 0.3 * u(rng)) * (kShortTrack_m - s2),
+               x3 = y3 + 20.0 + 40.0 * u(rng);
   return engine.simulate({{0.0, physics::Control::MaxTraction},
                           {x1, physics::Control::Coast},
                           {y2, physics::Control::MaxTraction},
@@ -208,10 +207,6 @@ physics::SimulationResult witness(const SectionEngine& engine, std::mt19937& rng
                           {y3, physics::Control::MaxTraction},
                           {x3, physics::Control::Coast}},
                          {}, 1.0);
-}
-
-TimingWindow stop_at(double s, double earliest, double latest) {
-  return {s, earliest, latest, 0.0, 0.0};
 }
 
 // A random journey around a witness run (feasible for it by construction): passing points at
@@ -252,8 +247,8 @@ RandomJourney random_journey(const SectionEngine& engine, std::mt19937& rng, dou
   }
   const double arrive = j.witness.running_time_s;
   j.witness_times.push_back(arrive);
-  j.windows.push_back(kind(rng) < 2 ? stop_at(kLength_m, arrive, arrive)
-                                    : stop_at(kLength_m, arrive - 10.0, arrive));
+  j.windows.push_back(kind(rng) < 2 ? stop_at(kShortTrack_m, arrive, arrive)
+                                    : stop_at(kShortTrack_m, arrive - 10.0, arrive));
   return j;
 }
 
@@ -275,7 +270,7 @@ testing::Message describe(int instance, const std::vector<TimingWindow>& windows
 TEST(TimingJourneyExact, ZeroWidthWindowsAtTwoPassingPointsAreMetExactlyAndBeatTheBruteForce) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(24001);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -288,7 +283,7 @@ TEST(TimingJourneyExact, ZeroWidthWindowsAtTwoPassingPointsAreMetExactlyAndBeatT
     const std::vector<TimingWindow> windows = {stop_at(0, 0, 0),
                                                {s1, t1, t1, -kOpen, kOpen},
                                                {s2, t2, t2, -kOpen, kOpen},
-                                               stop_at(kLength_m, arrive, arrive)};
+                                               stop_at(kShortTrack_m, arrive, arrive)};
     const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
     SCOPED_TRACE(testing::Message()
                  << "instance " << instance << ": " << s1 << " m at " << t1 << " s, " << s2
@@ -301,7 +296,7 @@ TEST(TimingJourneyExact, ZeroWidthWindowsAtTwoPassingPointsAreMetExactlyAndBeatT
     EXPECT_NEAR(sim.running_time_s, arrive, kExactTime_s);
     const double energy = sim.energy.traction_work_J;
     EXPECT_LE(energy, w.energy.traction_work_J * (1.0 + 1e-3));
-    BruteForce bf(engine, {s1, s2, kLength_m}, {t1, t2, arrive});
+    BruteForce bf(engine, {s1, s2, kShortTrack_m}, {t1, t2, arrive});
     const double best = bf.best_J(3);
     ASSERT_TRUE(std::isfinite(best));
     EXPECT_LE(energy, best * (1.0 + 2e-3)) << energy << " J against the brute force's " << best
@@ -318,7 +313,7 @@ TEST(TimingJourneyExact, ZeroWidthWindowsAtTwoPassingPointsAreMetExactlyAndBeatT
 TEST(TimingJourneyExact, RandomFeasibleWindowsAreMetAndNoDearerThanTheBruteForce) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(24002);
   for (int instance = 0; instance < 3; ++instance) {
@@ -341,7 +336,7 @@ TEST(TimingJourneyExact, RandomFeasibleWindowsAreMetAndNoDearerThanTheBruteForce
     }
     const double energy = sim.energy.traction_work_J;
     EXPECT_LE(energy, w.energy.traction_work_J * (1.0 + 1e-3));
-    BruteForce bf(engine, {j.s[0], j.s[1], kLength_m}, j.witness_times);
+    BruteForce bf(engine, {j.s[0], j.s[1], kShortTrack_m}, j.witness_times);
     const double best = bf.best_J(3);
     ASSERT_TRUE(std::isfinite(best));
     EXPECT_LE(energy, best * (1.0 + 2e-3))
@@ -354,7 +349,7 @@ TEST(TimingJourneyExact, RandomFeasibleWindowsAreMetAndNoDearerThanTheBruteForce
 TEST(TimingJourneyExact, AZeroWidthPassingWindowBeforeAMovingEndIsMetExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(24003);
   const physics::SimulationResult w = witness(engine, rng, 1000.0, 1500.0);
@@ -362,7 +357,7 @@ TEST(TimingJourneyExact, AZeroWidthPassingWindowBeforeAMovingEndIsMetExactly) {
   const double arrive = w.running_time_s;
   const std::vector<TimingWindow> windows = {{0.0, 0.0, 0.0, 1.0, 1.0},
                                              {s1, t1, t1, -kOpen, kOpen},
-                                             {kLength_m, arrive, arrive, 1.0, 1.0}};
+                                             {kShortTrack_m, arrive, arrive, 1.0, 1.0}};
   const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
@@ -385,7 +380,7 @@ namespace {
 TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(24004);
   const double s1 = 900.0;
@@ -393,8 +388,9 @@ TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
   ASSERT_TRUE(run_arrives(w));
   const At at = at_position(w, s1);
   const double arrive = w.running_time_s;
-  const std::vector<TimingWindow> windows = {
-      stop_at(0, 0, 0), {s1, at.t_s, at.t_s, at.v_ms, at.v_ms}, stop_at(kLength_m, arrive, arrive)};
+  const std::vector<TimingWindow> windows = {stop_at(0, 0, 0),
+                                             {s1, at.t_s, at.t_s, at.v_ms, at.v_ms},
+                                             stop_at(kShortTrack_m, arrive, arrive)};
   const TimingJourneySolution sol = solve_timing_journey(train, track, windows, options);
   ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
   ASSERT_TRUE(sol.windows_met);
@@ -418,7 +414,7 @@ TEST(TimingJourneyExact, AZeroWidthTimeAndSpeedPassingWindowIsMetExactly) {
 TEST(TimingJourneyExact, RandomWindowsWithPinnedStatesAreMetExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = short_track();
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   std::mt19937 rng(777);
   for (int instance = 0; instance < 8; ++instance) {
@@ -483,7 +479,7 @@ void expect_every_window_holds(const physics::Train& train, const physics::Route
 TEST(TimingJourneyExact, SpeedWindowsBetweenGridStagesHoldOnTheReSimulation) {
   const physics::Train train = data::default_train();
   const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const std::vector<std::vector<TimingWindow>> journeys = {
       {{0.0, 0.0, 0.0, 2.017, 2.017},
        {403.2, 29.076, kOpen, -kOpen, kOpen},
@@ -513,7 +509,7 @@ TEST(TimingJourneyExact, SpeedWindowsBetweenGridStagesHoldOnTheReSimulation) {
 TEST(TimingJourneyExact, WindowsNearTheFlatOutTimeAreMetOnTheSimulator) {
   const physics::Train train = data::default_train();
   const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const std::vector<std::vector<TimingWindow>> journeys = {
       {stop_at(0.0, 0.0, 0.0),
        {311.9, 26.914, 26.914, 14.759, kOpen},
@@ -545,7 +541,7 @@ TEST(TimingJourneyExact, WindowsNearTheFlatOutTimeAreMetOnTheSimulator) {
 TEST(TimingJourneyExact, ABandTheRunStillMissesIsNarrowedAndAZeroWidthTimeIsHeldExactly) {
   const physics::Train train = data::default_train();
   const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const std::vector<std::vector<TimingWindow>> journeys = {
       {stop_at(0.0, 0.0, 0.0),
        {308.8, 27.281, kOpen, -kOpen, kOpen},
@@ -570,7 +566,7 @@ void expect_no_dearer_than_witness(const std::vector<TimingWindow>& windows,
                                    const physics::ControlProgram& witness_program) {
   const physics::Train train = data::default_train();
   const physics::Route track = timing_test::rise_track(1000.0, 1800.0, 3000.0, 6.0, "X0", "X1");
-  const TimingJourneyOptions options = coarse();
+  const TimingJourneyOptions options = coarse_timing();
   const SectionEngine engine(train, track, options.engine);
   const physics::SimulationResult witness =
       engine.simulate(witness_program, {0.0, windows.front().min_speed_ms}, 1.0);

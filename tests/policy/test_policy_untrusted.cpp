@@ -64,18 +64,14 @@ void put_u32(std::string& b, std::size_t pos, std::uint32_t x) {
 }
 
 // A valid checksum over the edited bytes, as anyone can compute it.
-std::string reseal(std::string b) {
+std::string reseal_checksum(std::string b) {
   const std::uint64_t sum = data::fnv1a64(std::string_view(b).substr(0, b.size() - 8));
   std::memcpy(b.data() + b.size() - 8, &sum, 8);
   return b;
 }
 
-std::string error_of(const std::string& b) {
-  return policy::testing::decode_error_of(b);
-}
-
 TEST(PolicyUntrusted, TheUneditedTableDecodes) {
-  EXPECT_EQ(error_of(reseal(good_bytes())), "");
+  EXPECT_EQ(policy::testing::decode_error_of(reseal_checksum(good_bytes())), "");
 }
 
 TEST(PolicyUntrusted, AStageOffsetBeyondTheNodeCountIsRefusedBeforeUse) {
@@ -86,7 +82,7 @@ TEST(PolicyUntrusted, AStageOffsetBeyondTheNodeCountIsRefusedBeforeUse) {
   std::memcpy(&nodes, b.data() + counts + 4, 4);
   const std::size_t offsets = counts + 12 + 8 * stages;
   put_u32(b, offsets + 4, nodes + 1000);  // stage_offset[1]
-  const std::string e = error_of(reseal(b));
+  const std::string e = policy::testing::decode_error_of(reseal_checksum(b));
   EXPECT_NE(e.find("t.bin: invalid table: stage"), std::string::npos) << e;
 }
 
@@ -107,7 +103,7 @@ TEST(PolicyUntrusted, GridFieldsOutsideSaneRangesAreRefused) {
   for (const auto& c : cases) {
     std::string b = good_bytes();
     put_f64(b, grid_offset(b) + 8 * c.field, c.value);
-    const std::string e = error_of(reseal(b));
+    const std::string e = policy::testing::decode_error_of(reseal_checksum(b));
     EXPECT_NE(e.find(c.says), std::string::npos) << c.says << " = " << c.value << ": " << e;
   }
 }

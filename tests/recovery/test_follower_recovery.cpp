@@ -107,7 +107,7 @@ int back_on_time_index(const std::vector<double>& lateness_s) {
   return back;
 }
 
-struct Case {
+struct DelayCase {
   double headway_s, delay_s;
   std::size_t station;
   bool lateness_first;
@@ -115,7 +115,7 @@ struct Case {
 
 TEST(FollowerRecovery, AHeldUpFollowerIsTheOptimumOfABruteForceOverItsRunningTimes) {
   const double b = service::default_separation_braking_m_s2(small_library().train());
-  for (const Case c : {Case{60.0, 50.0, 0, false}, Case{50.0, 30.0, 1, true}}) {
+  for (const DelayCase c : {DelayCase{60.0, 50.0, 0, false}, DelayCase{50.0, 30.0, 1, true}}) {
     SCOPED_TRACE("headway " + std::to_string(c.headway_s) + " s, delay " +
                  std::to_string(c.delay_s) + " s at station " + std::to_string(c.station) +
                  (c.lateness_first ? ", lateness first" : ", energy first"));
