@@ -83,12 +83,7 @@ TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& wi
   auto spent_s = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  auto solution_after_trying = [&]() {
-    solution.summary.evaluations += evaluations;
-    solution.summary.total_wall_s += spent_s();
-    solution.journey.total_wall_s = solution.summary.total_wall_s;
-    return std::move(solution);
-  };
+  auto solution_after_trying = [&]() { return after_trying(std::move(solution), evaluations, t0); };
   const auto first_part = std::find_if(solution.parts.begin(), solution.parts.end(),
                                        [&](const TimingPart& p) { return p.first_point == from; });
   if (first_part == solution.parts.end()) return solution_after_trying();
@@ -104,8 +99,7 @@ TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& wi
   auto piece_cost = [&](std::size_t k, double v_start_ms, double v_end_ms) {
     std::vector<TimingWindow> piece(w.begin() + ends[k], w.begin() + ends[k + 1] + 1);
     if (k == 0) {
-      piece.front().earliest_s = first_part->departure_s;
-      piece.front().latest_s = std::max(piece.front().latest_s, first_part->departure_s);
+      depart_at(piece.front(), first_part->departure_s);
     } else {
       piece.front().min_speed_ms = piece.front().max_speed_ms = v_start_ms;
     }

@@ -1,5 +1,6 @@
 #include "dp/timing_pin_trials.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "dp/timing_journey_part.hpp"
@@ -11,6 +12,20 @@ double journey_cost_J(const TimingJourneySolution& s) {
   double cost = 0.0;
   for (const JourneySection& section : s.journey.sections) cost += section.run.cost_J;
   return cost;
+}
+
+void depart_at(TimingWindow& first, double departure_s) {
+  first.earliest_s = departure_s;
+  first.latest_s = std::max(first.latest_s, departure_s);
+}
+
+TimingJourneySolution after_trying(TimingJourneySolution solution, int evaluations,
+                                   std::chrono::steady_clock::time_point t0) {
+  solution.summary.evaluations += evaluations;
+  solution.summary.total_wall_s +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  solution.journey.total_wall_s = solution.summary.total_wall_s;
+  return solution;
 }
 
 CheapestTrialJourney solve_cheapest_in_turn(

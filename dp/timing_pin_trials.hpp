@@ -8,6 +8,7 @@
 // grid: the trials around it alternate between met and missed).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -36,6 +37,15 @@ struct CheapestTrialJourney {
   std::size_t index = 0;                          // the trial it was solved at
   bool met = false;                               // every window holds on it
 };
+
+// The first window of a stretch solved alone, made its departure at departure_s (the time the
+// reference run leaves it): its earliest bound there, its latest no earlier.
+void depart_at(TimingWindow& first, double departure_s);
+
+// solution as it was before the pins were tried, its evaluations and wall time counting the
+// trials' (they were spent): `evaluations` more, and the time since t0.
+TimingJourneySolution after_trying(TimingJourneySolution solution, int evaluations,
+                                   std::chrono::steady_clock::time_point t0);
 
 // Solves journey_of(k) for the trials k = 0, 1, ... (cheapest first, `trials` of them), at
 // most kFinalTries, until one meets every window (met). When none does, the first journey that

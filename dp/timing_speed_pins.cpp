@@ -71,14 +71,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
   const auto t0 = std::chrono::steady_clock::now();
   int evaluations = 0;
   // plain, its evaluations and wall time counting the pins' solves too (they were spent).
-  auto plain_after_trying = [&]() {
-    const double extra_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    plain.summary.evaluations += evaluations;
-    plain.summary.total_wall_s += extra_s;
-    plain.journey.total_wall_s = plain.summary.total_wall_s;
-    return std::move(plain);
-  };
+  auto plain_after_trying = [&]() { return after_trying(std::move(plain), evaluations, t0); };
   std::vector<TimingWindow> w = windows;
   std::optional<TimingJourneySolution> pinned;  // the whole journey with every point pinned so far
   for (std::size_t next = 0; next < pins.size(); ++next) {
@@ -92,8 +85,7 @@ TimingJourneySolution with_speeds_pinned(const std::vector<TimingWindow>& window
                                    [&](const TimingPart& p) { return p.last_point > i; });
     if (part == reference.parts.end() || part->first_point >= i) return plain_after_trying();
     std::vector<TimingWindow> sub(w.begin() + part->first_point, w.begin() + part->last_point + 1);
-    sub.front().earliest_s = part->departure_s;
-    sub.front().latest_s = std::max(sub.front().latest_s, part->departure_s);
+    depart_at(sub.front(), part->departure_s);
     const int at = i - part->first_point;
     // The pinned window for x (a time, or a speed), and where x is searched: a time between
     // the reference run's times at the points either side, a speed within half the reference
