@@ -34,6 +34,10 @@ function(ecorail_room room)
   add_library(ecorail::${room} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${room} POSITION_INDEPENDENT_CODE ON)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
+  # Batches of eight files (ECORAIL_UNITY_BUILD): file-scope names, anonymous namespaces too,
+  # are shared within a batch, so a room's files give their helpers names of their own.
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${ECORAIL_UNITY_BUILD}
+                                             UNITY_BUILD_BATCH_SIZE 8)
   set(below "")
   foreach(r ${ROOM_ROOMS})
     list(APPEND below ecorail_${r})

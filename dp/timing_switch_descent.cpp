@@ -22,7 +22,6 @@ constexpr int kRestoreSteps = 6;
 // A trial must take off at least this fraction of the cost to count as cheaper (the
 // simulator's own noise on a run's cost is far below it).
 constexpr double kLeastGain = 1e-7;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // Switches keep at least this far apart and from the fixed part of the run (m).
 constexpr double kLeastGap_m = 1e-3;
 

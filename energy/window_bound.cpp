@@ -16,7 +16,7 @@ namespace ecorail::energy {
 
 namespace {
 
-constexpr double kNone = -std::numeric_limits<double>::infinity();
+using window_terms::kNone;
 
 // Thrown where WindowBoundOptions::stop ends the work (never inside a parallel region).
 struct Stopped {};

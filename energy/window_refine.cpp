@@ -17,7 +17,7 @@ namespace ecorail::energy {
 
 namespace {
 
-constexpr double kNone = -std::numeric_limits<double>::infinity();
+using window_terms::kNone;
 
 using Triple = std::array<int, 3>;
 

@@ -19,7 +19,7 @@ namespace ecorail::energy {
 
 namespace {
 
-constexpr double kNone = -std::numeric_limits<double>::infinity();
+using window_terms::kNone;
 
 // The window terms of every headway of the range (index i is headway lo + i).
 struct Terms {

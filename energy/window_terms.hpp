@@ -9,12 +9,16 @@
 // newest three to the end).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "energy/model_options.hpp"
 #include "energy/power_flow_profile.hpp"
 
 namespace ecorail::energy::window_terms {
+
+// No value: below every energy (a DP state no sequence reaches).
+inline constexpr double kNone = -std::numeric_limits<double>::infinity();
 
 // Traction and regenerated energy (J) of one train per bin of a grid of q bins a second.
 struct Grid {

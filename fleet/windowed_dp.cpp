@@ -14,7 +14,7 @@ namespace ecorail::fleet {
 
 namespace {
 
-constexpr double kNone = -std::numeric_limits<double>::infinity();
+constexpr double kUnreached = -std::numeric_limits<double>::infinity();
 
 void check_tables(const FleetProblem& p, const WindowedValue& value) {
   const std::size_t m = p.any_headway_max_s() - p.any_headway_min_s() + 1;
@@ -36,16 +36,16 @@ HeadwayChoice maximise_windowed(const FleetProblem& p, const WindowedValue& valu
   if (!reach.feasible()) throw std::invalid_argument("no timetable keeps the headway classes");
   HeadwayChoice out;
   if (n <= 0) return out;
-  std::vector<double> cur(span + 1, kNone), next(span + 1, kNone);
+  std::vector<double> cur(span + 1, kUnreached), next(span + 1, kUnreached);
   cur[0] = 0.0;
   // choice[k][t]: the last headway of the best k headways ending at t.
   std::vector<std::vector<std::int16_t>> choice(n + 1);
   for (int k = 0; k < n; ++k) {
-    std::fill(next.begin(), next.end(), kNone);
+    std::fill(next.begin(), next.end(), kUnreached);
     choice[k + 1].assign(span + 1, 0);
     auto& from = choice[k + 1];
     for (int t = 0; t <= span; ++t) {
-      if (cur[t] == kNone || !reach.keeps(k, t)) continue;
+      if (cur[t] == kUnreached || !reach.keeps(k, t)) continue;
       const WindowedReach::Ranges r = reach.ranges(t);
       auto relax = [&](int h_lo, int h_hi, const std::vector<double>& v) {
         h_hi = std::min(h_hi, span - t);
@@ -163,7 +163,7 @@ HeadwayChoice maximise_windowed_chain(const FleetProblem& p, const WindowedValue
   for (int k = 0; k < n; ++k) {
     const ChainLayer& from = layers[k];
     const ChainLayer& to = layers[k + 1];
-    next.assign(static_cast<std::size_t>(to.slots()), kNone);
+    next.assign(static_cast<std::size_t>(to.slots()), kUnreached);
     back[k + 1].assign(static_cast<std::size_t>(to.slots()), -1);
     for (std::size_t j = 0; j < to.times.size(); ++j) where[to.times[j]] = j;
     for (std::size_t i = 0; i < from.times.size(); ++i) {
@@ -176,7 +176,7 @@ HeadwayChoice maximise_windowed_chain(const FleetProblem& p, const WindowedValue
       } else {
         for (int e = from.e_lo[i]; e <= from.e_hi[i]; ++e) {
           const double x = cur[static_cast<std::size_t>(from.slot(i, e))];
-          if (x != kNone) order[count++] = e;
+          if (x != kUnreached) order[count++] = e;
         }
         const std::int64_t base = from.offset[i] - from.e_lo[i];
         std::sort(order.begin(), order.begin() + count, [&](int a, int b) {
@@ -190,7 +190,7 @@ HeadwayChoice maximise_windowed_chain(const FleetProblem& p, const WindowedValue
         const int t2 = t + h;
         if (!reach.keeps(k + 1, t2)) return;
         const int e2 = h - lo;
-        double best = kNone;
+        double best = kUnreached;
         int arg = -1;
         for (int c = 0; c < count; ++c) {
           if (row_value[c] <= best) break;  // penalty >= 0: no later candidate can win
