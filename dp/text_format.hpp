@@ -5,16 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "base/format_text.hpp"
 #include "dp/termination.hpp"
 
 namespace ecorail::dp {
 
-template <typename... Args>
-std::string format_text(const char* fmt, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
+using ecorail::format_text;
 
 // The time price lambda as every text output writes it (reports, tables): kJ/s with three
 // decimals, e.g. "264.359 kJ/s". JSON and CSV carry the same number under "lambda" (with

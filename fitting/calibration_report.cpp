@@ -5,18 +5,13 @@
 #include <cstdio>
 #include <string>
 
+#include "base/format_text.hpp"
 #include "fitting/calibration.hpp"
 #include "physics/units.hpp"
 
 namespace ecorail::fitting {
 
 namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 std::string pad(std::string s, std::size_t w) {
   if (s.size() < w) s.append(w - s.size(), ' ');
@@ -29,10 +24,10 @@ std::string lpad(std::string s, std::size_t w) {
 }
 
 std::string value_se(const ParameterEstimate& e) {
-  std::string s = fmt("%.6g", e.value);
+  std::string s = format_text("%.6g", e.value);
   if (e.fixed) return s + " (fixed)";
   if (std::isnan(e.se)) return s + " +- ?";
-  return s + " +- " + fmt("%.2g", e.se);
+  return s + " +- " + format_text("%.2g", e.se);
 }
 
 std::string row_ref(const Summary& s, const DiscountedRow& d) {
@@ -54,7 +49,7 @@ std::string Summary::BriefReport() const {
       out += (first ? "" : ", ") + std::string(param_name(p)) + " " + value_se(e);
       first = false;
     }
-    out += ", sigma " + fmt("%.3g", r.fit.sigma) + " " + r.residual_unit;
+    out += ", sigma " + format_text("%.3g", r.fit.sigma) + " " + r.residual_unit;
     out += ", " + std::string(dp::termination_name(r.fit.termination)) + "\n";
   }
   return out;
@@ -78,9 +73,10 @@ std::string Summary::FullReport() const {
            " zero-traction rows decelerate beyond coasting and the log has no braking force: "
            "taken as braking with unknown force\n";
   }
-  out += "  speeds " + fmt("%.1f", data.min_speed_kmh) + " to " + fmt("%.1f", data.max_speed_kmh) +
-         " km/h; gradient " + fmt("%.1f", data.min_gradient_permille) + " to " +
-         fmt("%.1f", data.max_gradient_permille) + " per mille (" +
+  out += "  speeds " + format_text("%.1f", data.min_speed_kmh) + " to " +
+         format_text("%.1f", data.max_speed_kmh) + " km/h; gradient " +
+         format_text("%.1f", data.min_gradient_permille) + " to " +
+         format_text("%.1f", data.max_gradient_permille) + " per mille (" +
          std::to_string(data.gradient_intervals) + " intervals on a gradient); " +
          std::to_string(data.force_intervals) + " intervals with known traction or braking force\n";
   if (!data.position_issues.empty()) {
@@ -91,7 +87,8 @@ std::string Summary::FullReport() const {
       const auto& p = data.position_issues[i];
       out += "  " + logs.at(static_cast<std::size_t>(p.log_index)) + ": rows " +
              std::to_string(p.row_from) + "-" + std::to_string(p.row_to) + ": advances " +
-             fmt("%.1f", p.logged_m) + " m, speeds cover " + fmt("%.1f", p.expected_m) + " m";
+             format_text("%.1f", p.logged_m) + " m, speeds cover " +
+             format_text("%.1f", p.expected_m) + " m";
       if (p.suspect_row > 0) out += " (row " + std::to_string(p.suspect_row) + " out of line)";
       out += "\n";
     }
@@ -100,8 +97,8 @@ std::string Summary::FullReport() const {
     }
   }
   out += "Robust loss: " + std::string(loss_name(options.loss)) + " at " +
-         fmt("%.3g", options.loss_scale) + " sigma; rows weighted below " +
-         fmt("%.2g", options.discount_weight) + " are reported as discounted\n";
+         format_text("%.3g", options.loss_scale) + " sigma; rows weighted below " +
+         format_text("%.2g", options.discount_weight) + " are reported as discounted\n";
 
   for (const auto& r : results) {
     out += "\n" + std::string(method_name(r.method)) + " (residual: " +
@@ -113,25 +110,26 @@ std::string Summary::FullReport() const {
     for (int p = 0; p < kParamCount; ++p) {
       const auto& e = r.params[static_cast<std::size_t>(p)];
       std::string line =
-          "  " + pad(std::string(param_name(p)), 22) + lpad(fmt("%.6g", e.value), 13);
-      line += lpad(e.fixed ? "fixed" : std::isnan(e.se) ? "?" : fmt("%.3g", e.se), 12);
-      line += lpad(fmt("%.6g", e.start), 12);
+          "  " + pad(std::string(param_name(p)), 22) + lpad(format_text("%.6g", e.value), 13);
+      line += lpad(e.fixed ? "fixed" : std::isnan(e.se) ? "?" : format_text("%.3g", e.se), 12);
+      line += lpad(format_text("%.6g", e.start), 12);
       if (!e.fixed) {
-        line += "   [" + fmt("%.4g", e.lower) + ", " + fmt("%.4g", e.upper) + "]";
+        line += "   [" + format_text("%.4g", e.lower) + ", " + format_text("%.4g", e.upper) + "]";
         if (e.at_bound) line += " at bound";
       }
       out += line + "  " + std::string(param_unit(p)) + "\n";
     }
-    out += "  noise scale sigma " + fmt("%.4g", r.fit.sigma) + " " + r.residual_unit +
-           " (1.4826 x median |residual|); rms " + fmt("%.4g", r.fit.rms) + ", max |residual| " +
-           fmt("%.4g", r.fit.max_abs) + " over " + std::to_string(r.fit.residual_count) +
-           " residuals; " + std::to_string(r.fit.discounted_residuals) + " discounted\n";
+    out += "  noise scale sigma " + format_text("%.4g", r.fit.sigma) + " " + r.residual_unit +
+           " (1.4826 x median |residual|); rms " + format_text("%.4g", r.fit.rms) +
+           ", max |residual| " + format_text("%.4g", r.fit.max_abs) + " over " +
+           std::to_string(r.fit.residual_count) + " residuals; " +
+           std::to_string(r.fit.discounted_residuals) + " discounted\n";
     out += "  discounted rows (" + std::to_string(r.fit.discounted.size()) + ")";
     const std::size_t shown = std::min<std::size_t>(r.fit.discounted.size(), 30);
     for (std::size_t i = 0; i < shown; ++i) {
       const auto& d = r.fit.discounted[i];
-      out += (i % 3 == 0 ? "\n    " : "   ") + row_ref(*this, d) + " (t " + fmt("%.0f", d.time_s) +
-             " s, " + fmt("%+.1f", d.z) + " sigma)";
+      out += (i % 3 == 0 ? "\n    " : "   ") + row_ref(*this, d) + " (t " +
+             format_text("%.0f", d.time_s) + " s, " + format_text("%+.1f", d.z) + " sigma)";
     }
     if (shown < r.fit.discounted.size()) {
       out += "\n    ... and " + std::to_string(r.fit.discounted.size() - shown) + " more";
@@ -140,18 +138,19 @@ std::string Summary::FullReport() const {
     for (double v = 30.0; v <= 70.0 + 1e-9; v += 10.0) {
       const double base_d = base.gravity_m_s2 * base.davis_N_per_kN(units::kmh_to_ms(v)) / 1000.0 /
                             (1.0 + base.rotating_mass_factor);
-      out += "  " + fmt("%.0f", v) + " km/h " +
-             fmt("%.4f", r.coasting_decel_m_s2(v, base.gravity_m_s2)) + "/" + fmt("%.4f", base_d);
+      out += "  " + format_text("%.0f", v) + " km/h " +
+             format_text("%.4f", r.coasting_decel_m_s2(v, base.gravity_m_s2)) + "/" +
+             format_text("%.4f", base_d);
     }
     out += "\n  Ceres: " + r.fit.ceres_brief + "\n";
     out += "  " + std::to_string(r.fit.iterations) + " iterations over all passes, " +
-           fmt("%.3f", r.fit.solve_time_s) + " s\n";
+           format_text("%.3f", r.fit.solve_time_s) + " s\n";
   }
   if (!notes.empty()) {
     out += "\nNotes\n";
     for (const auto& n : notes) out += "  - " + n + "\n";
   }
-  out += "\nTotal time " + fmt("%.3f", total_time_s) + " s\n";
+  out += "\nTotal time " + format_text("%.3f", total_time_s) + " s\n";
   return out;
 }
 

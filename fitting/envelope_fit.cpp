@@ -11,6 +11,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
 
+#include "base/format_text.hpp"
 #include "data/csv_reader.hpp"
 #include "data/input_error.hpp"
 #include "data/plausibility.hpp"
@@ -342,12 +343,6 @@ FormFit fit_power(const std::vector<EnvelopePoint>& pts) {
   return fit;
 }
 
-std::string fit_text(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 }  // namespace
 
 double FormFit::force_kN(double v_kmh) const {
@@ -420,7 +415,9 @@ physics::ForceEnvelope to_force_envelope(const FormFit& fit, double top_kmh) {
 std::string EnvelopeFitResult::report(EnvelopeKind kind) const {
   std::string out = "\nEnvelope fit (" + std::string(kind_name(kind)) + ", " +
                     std::to_string(points.size()) + " points)\n";
-  auto pm = [](double v, double se) { return fit_text("%.6g", v) + " +- " + fit_text("%.2g", se); };
+  auto pm = [](double v, double se) {
+    return format_text("%.6g", v) + " +- " + format_text("%.2g", se);
+  };
   out += "\npiecewise: constant up to the breakpoint, then a degree-" + std::to_string(degree) +
          " polynomial continuous there\n";
   out += "  constant force      " + pm(piecewise.force_max_kN, piecewise.force_max_kN_se) + " kN\n";
@@ -431,19 +428,20 @@ std::string EnvelopeFitResult::report(EnvelopeKind kind) const {
            pm(piecewise.coeffs_kN[j], piecewise.coeffs_kN_se[j]) +
            (j == 0 ? std::string(" kN") : " kN/(km/h)^" + std::to_string(j)) + "\n";
   }
-  out += "  rms " + fit_text("%.4g", piecewise.rms_kN) + " kN, max |residual| " +
-         fit_text("%.4g", piecewise.max_abs_kN) + " kN, AIC " + fit_text("%.2f", piecewise.aic) +
-         ", BIC " + fit_text("%.2f", piecewise.bic) +
+  out += "  rms " + format_text("%.4g", piecewise.rms_kN) + " kN, max |residual| " +
+         format_text("%.4g", piecewise.max_abs_kN) + " kN, AIC " +
+         format_text("%.2f", piecewise.aic) + ", BIC " + format_text("%.2f", piecewise.bic) +
          (piecewise.converged() ? "" : " (not converged)") + "\n";
   out += "\nconstant power: F = min(Fmax, P / v)\n";
   out += "  Fmax                " + pm(power.force_max_kN, power.force_max_kN_se) + " kN\n";
   out += "  P                   " + pm(power.power_kW, power.power_kW_se) + " kW\n";
   out += "  breakpoint P/Fmax   " + pm(power.breakpoint_kmh, power.breakpoint_kmh_se) + " km/h\n";
-  out += "  rms " + fit_text("%.4g", power.rms_kN) + " kN, max |residual| " +
-         fit_text("%.4g", power.max_abs_kN) + " kN, AIC " + fit_text("%.2f", power.aic) + ", BIC " +
-         fit_text("%.2f", power.bic) + (power.converged() ? "" : " (not converged)") + "\n";
+  out += "  rms " + format_text("%.4g", power.rms_kN) + " kN, max |residual| " +
+         format_text("%.4g", power.max_abs_kN) + " kN, AIC " + format_text("%.2f", power.aic) +
+         ", BIC " + format_text("%.2f", power.bic) + (power.converged() ? "" : " (not converged)") +
+         "\n";
   out += "\nbetter fit (lower BIC): " + std::string(form_name(better)) + " (BIC difference " +
-         fit_text("%.1f", std::abs(piecewise.bic - power.bic)) + ")\n";
+         format_text("%.1f", std::abs(piecewise.bic - power.bic)) + ")\n";
   return out;
 }
 

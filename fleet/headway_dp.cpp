@@ -10,8 +10,6 @@ namespace ecorail::fleet {
 
 namespace {
 
-constexpr double kNone = -std::numeric_limits<double>::infinity();
-
 struct Band {
   long lo = 0, hi = 0;  // partial sums of e after k headways
 };
@@ -39,7 +37,7 @@ HeadwayChoice maximise_separable(const HeadwayDomain& d, const std::vector<doubl
   std::vector<std::vector<std::int32_t>> choice(d.count + 1);
   for (int k = 1; k <= d.count; ++k) {
     const Band prev = band[k - 1], cur = band[k];
-    next.assign(cur.hi - cur.lo + 1, kNone);
+    next.assign(cur.hi - cur.lo + 1, kUnreached);
     choice[k].assign(next.size(), -1);
     for (long s = cur.lo; s <= cur.hi; ++s) {
       double& b = next[s - cur.lo];
@@ -84,25 +82,25 @@ HeadwayChoice maximise_chain(const HeadwayDomain& d, const std::vector<double>& 
   auto at = [&](int k, long s, int e) -> std::size_t {
     return static_cast<std::size_t>((s - band[k].lo) * m + e);
   };
-  v[1].assign((band[1].hi - band[1].lo + 1) * m, kNone);
+  v[1].assign((band[1].hi - band[1].lo + 1) * m, kUnreached);
   for (long s = band[1].lo; s <= band[1].hi; ++s)
     if (s <= w) v[1][at(1, s, static_cast<int>(s))] = value[s];
   std::vector<int> order(m);
   for (int k = 1; k < d.count; ++k) {
     const Band cur = band[k], nxt = band[k + 1];
-    v[k + 1].assign((nxt.hi - nxt.lo + 1) * m, kNone);
+    v[k + 1].assign((nxt.hi - nxt.lo + 1) * m, kUnreached);
     from[k + 1].assign(v[k + 1].size(), -1);
     for (long s = cur.lo; s <= cur.hi; ++s) {
       const double* row = &v[k][at(k, s, 0)];
       int count = 0;
       for (int e = 0; e < m; ++e)
-        if (row[e] != kNone) order[count++] = e;
+        if (row[e] != kUnreached) order[count++] = e;
       if (count == 0) continue;
       std::sort(order.begin(), order.begin() + count,
                 [&](int a, int b) { return row[a] > row[b] || (row[a] == row[b] && a < b); });
       const long e2_lo = std::max(0L, nxt.lo - s), e2_hi = std::min<long>(w, nxt.hi - s);
       for (long e2 = e2_lo; e2 <= e2_hi; ++e2) {
-        double best = kNone;
+        double best = kUnreached;
         int arg = -1;
         for (int i = 0; i < count; ++i) {
           const int e = order[i];
@@ -121,7 +119,7 @@ HeadwayChoice maximise_chain(const HeadwayDomain& d, const std::vector<double>& 
   }
   const long s_end = band[d.count].lo;
   int e_end = 0;
-  double best = kNone;
+  double best = kUnreached;
   for (int e = 0; e < m; ++e) {
     const double x = v[d.count][at(d.count, s_end, e)];
     if (x > best) best = x, e_end = e;

@@ -13,9 +13,13 @@
 //   two. Both are exact; tests compare them with brute force.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 namespace ecorail::fleet {
+
+// The value of a DP state no headway sequence reaches (both headway DPs, fleet/windowed_dp.hpp).
+inline constexpr double kUnreached = -std::numeric_limits<double>::infinity();
 
 struct HeadwayDomain {
   int count = 0;  // headways (trains - 1)

@@ -14,8 +14,6 @@ namespace ecorail::fleet {
 
 namespace {
 
-constexpr double kUnreached = -std::numeric_limits<double>::infinity();
-
 void check_tables(const FleetProblem& p, const WindowedValue& value) {
   const std::size_t m = p.any_headway_max_s() - p.any_headway_min_s() + 1;
   if (value.peak.size() != m || value.offpeak.size() != m)
