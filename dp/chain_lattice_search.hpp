@@ -7,17 +7,24 @@
 // halves. Every variable moves at once, so a valley along a diagonal (two points 100 m apart
 // that must be passed 9 s apart want the same speed) is followed as fast as an axis. Costs are
 // kept by their lattice indices, so a moved or refined lattice evaluates only its new pairs.
+// The costs a DP stage needs are solved side by side on `threads` OpenMP threads (each call of
+// the cost then runs alone on its thread: nested regions are serial), and the search takes the
+// same path for any thread count: costs are keyed, not ordered by who finished first.
 // Used for the speeds of the points pinned in a part the label search ran
 // (dp/timing_binding_pins.hpp). A local search: the best of each lattice, not a global minimum.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <exception>
 #include <limits>
 #include <map>
 #include <tuple>
 #include <utility>
 #include <vector>
+
+#include <omp.h>
 
 namespace ecorail::dp {
 
@@ -35,12 +42,14 @@ struct ChainLatticeResult {
 // [lo[i], hi[i]]; values outside are not evaluated. The lattice starts around x0 with steps of
 // first_step, halved (levels - 1) times at most; the search stops when the centre is best at
 // the finest step, or before a lattice whose new costs would exceed max_cost_evaluations.
-// +inf costs are allowed (an infeasible pair).
+// +inf costs are allowed (an infeasible pair). cost must be safe to call from several threads
+// at once when threads is not 1 (threads <= 0: OpenMP's default); an exception it throws ends
+// the search (the one of the first cost in the stage's order, whichever thread threw it).
 template <class Cost>
 ChainLatticeResult chain_lattice_minimum(const Cost& cost, const std::vector<double>& x0,
                                          const std::vector<double>& lo,
                                          const std::vector<double>& hi, double first_step,
-                                         int levels, int max_cost_evaluations) {
+                                         int levels, int max_cost_evaluations, int threads = 1) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const std::size_t n = x0.size();
   ChainLatticeResult out;
@@ -50,17 +59,36 @@ ChainLatticeResult chain_lattice_minimum(const Cost& cost, const std::vector<dou
   long step = finest << (levels - 1);
   const double unit = first_step / static_cast<double>(step);
   auto value = [&](std::size_t i, long j) { return x0[i] + unit * static_cast<double>(j); };
-  std::map<std::tuple<std::size_t, long, long>, double> known;
-  auto pair_cost = [&](std::size_t k, long a, long b) {
-    const auto key = std::make_tuple(k, a, b);
-    const auto it = known.find(key);
-    if (it != known.end()) return it->second;
-    ++out.cost_evaluations;
-    const double c =
-        cost(k, k == 0 ? std::nan("") : value(k - 1, a), k == n ? std::nan("") : value(k, b));
-    known.emplace(key, c);
-    return c;
+  using Key = std::tuple<std::size_t, long, long>;
+  std::map<Key, double> known;
+  // Solves the costs of keys not known yet, side by side.
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  auto solve_costs = [&](const std::vector<Key>& keys) {
+    std::vector<Key> fresh;
+    for (const Key& key : keys) {
+      if (known.count(key) == 0 && std::find(fresh.begin(), fresh.end(), key) == fresh.end())
+        fresh.push_back(key);
+    }
+    const long count = static_cast<long>(fresh.size());
+    std::vector<double> costs(fresh.size(), kInf);
+    std::vector<std::exception_ptr> errors(fresh.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1 && count > 1)
+    for (long q = 0; q < count; ++q) {
+      const auto [k, a, b] = fresh[static_cast<std::size_t>(q)];
+      try {
+        costs[static_cast<std::size_t>(q)] =
+            cost(k, k == 0 ? std::nan("") : value(k - 1, a), k == n ? std::nan("") : value(k, b));
+      } catch (...) {
+        errors[static_cast<std::size_t>(q)] = std::current_exception();
+      }
+    }
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+    for (std::size_t q = 0; q < fresh.size(); ++q) known.emplace(fresh[q], costs[q]);
+    out.cost_evaluations += static_cast<int>(fresh.size());
   };
+  auto pair_cost = [&](std::size_t k, long a, long b) { return known.at(Key{k, a, b}); };
   std::vector<long> centre(n, 0);
   while (true) {
     // The values of each variable: the centre first, so that a tie keeps it.
@@ -87,10 +115,20 @@ ChainLatticeResult chain_lattice_minimum(const Cost& cost, const std::vector<dou
     // The DP along the chain: best[i][v] is the least cost of c_0..c_i with x_i = values[i][v].
     std::vector<std::vector<double>> best(n);
     std::vector<std::vector<std::size_t>> from(n);
+    std::vector<Key> needed;
+    for (const long b : values[0]) needed.emplace_back(0, 0, b);
+    solve_costs(needed);
     for (std::size_t v = 0; v < values[0].size(); ++v)
       best[0].push_back(pair_cost(0, 0, values[0][v]));
     from[0].assign(values[0].size(), 0);
     for (std::size_t i = 1; i < n; ++i) {
+      // The stage's costs: none after a value no run reaches.
+      needed.clear();
+      for (std::size_t u = 0; u < values[i - 1].size(); ++u) {
+        if (!(best[i - 1][u] < kInf)) continue;
+        for (const long b : values[i]) needed.emplace_back(i, values[i - 1][u], b);
+      }
+      solve_costs(needed);
       for (const long b : values[i]) {
         double least = kInf;
         std::size_t arg = 0;
@@ -103,6 +141,11 @@ ChainLatticeResult chain_lattice_minimum(const Cost& cost, const std::vector<dou
         from[i].push_back(arg);
       }
     }
+    needed.clear();
+    for (std::size_t u = 0; u < values[n - 1].size(); ++u) {
+      if (best[n - 1][u] < kInf) needed.emplace_back(n, values[n - 1][u], 0);
+    }
+    solve_costs(needed);
     double least = kInf;
     std::size_t arg = 0;
     for (std::size_t u = 0; u < values[n - 1].size(); ++u) {

@@ -1,6 +1,7 @@
 #include "dp/timing_binding_pins.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -44,7 +45,7 @@ TimingWindow pinned_state(const TimingWindow& w, double t_s, double v_ms) {
 TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& windows,
                                              TimingJourneySolution solution,
                                              const JourneySolve& solve,
-                                             const JourneySolve& search_solve) {
+                                             const JourneySolve& search_solve, int threads) {
   const int n = static_cast<int>(windows.size());
   if (static_cast<int>(solution.windows.size()) != n || !solution.windows_met) return solution;
   // The journey as solved: every moving point a part starts from that the journey does not pin
@@ -96,6 +97,8 @@ TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& wi
   std::vector<int> ends{from};
   ends.insert(ends.end(), pins.begin(), pins.end());
   ends.push_back(to);
+  // Pieces are solved side by side (chain_lattice_minimum), so their evaluations add up here.
+  std::atomic<int> piece_evaluations{0};
   auto piece_cost = [&](std::size_t k, double v_start_ms, double v_end_ms) {
     std::vector<TimingWindow> piece(w.begin() + ends[k], w.begin() + ends[k + 1] + 1);
     if (k == 0) {
@@ -106,7 +109,7 @@ TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& wi
     if (k < m) piece.back().min_speed_ms = piece.back().max_speed_ms = v_end_ms;
     try {
       const TimingJourneySolution s = search_solve(piece);
-      evaluations += s.summary.evaluations;
+      piece_evaluations += s.summary.evaluations;
       return journey_cost_J(s);
     } catch (const TimeRequestError&) {  // a state no run reaches
       return kInf;
@@ -121,7 +124,8 @@ TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& wi
   }
   const ChainLatticeResult found =
       chain_lattice_minimum(piece_cost, x0, lo, hi, kFirstStep_ms, kLatticeLevels,
-                            kPieceSolvesPerSpeed * static_cast<int>(m));
+                            kPieceSolvesPerSpeed * static_cast<int>(m), threads);
+  evaluations += piece_evaluations.load();
   // The journey at the cheapest lattices' speeds, in turn, until one meets every window (the
   // pieces were solved alone, without the label search).
   std::vector<std::pair<double, std::vector<double>>> met = found.lattice_bests;

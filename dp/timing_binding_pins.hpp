@@ -28,10 +28,11 @@ namespace ecorail::dp::timing {
 // that run binds one to kMaxBindingPins time bounds of the points inside it, the journey with
 // those points pinned (see above) when it costs less and every window holds; solution
 // otherwise. Its windows are reported as asked; its evaluations and wall time count every solve.
-// search_solve solves the search's trials (the asked grid, no label search).
+// search_solve solves the search's trials (the asked grid, no label search), up to `threads` at
+// once (0: OpenMP's default; the result is the same for any count), so it must be thread-safe.
 TimingJourneySolution with_label_runs_pinned(const std::vector<TimingWindow>& windows,
                                              TimingJourneySolution solution,
                                              const JourneySolve& solve,
-                                             const JourneySolve& search_solve);
+                                             const JourneySolve& search_solve, int threads);
 
 }  // namespace ecorail::dp::timing

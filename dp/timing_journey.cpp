@@ -568,7 +568,8 @@ TimingJourneySolution solve_timing_journey(const physics::Train& train, const ph
   const auto solve_unlabelled = [&](const std::vector<TimingWindow>& w) {
     return solve_windows(train, track, w, unlabelled, id);
   };
-  return with_label_runs_pinned(windows, std::move(pinned), solve, solve_unlabelled);
+  return with_label_runs_pinned(windows, std::move(pinned), solve, solve_unlabelled,
+                                options.engine.threads);
 }
 
 }  // namespace ecorail::dp

@@ -1,11 +1,18 @@
 // The chain lattice search (dp/chain_lattice_search.hpp): its DP over one lattice against brute
 // force over all 3^n combinations of a lattice with arbitrary pair costs, a coupled valley whose
-// minimum is known in closed form (followed along its diagonal), +inf pairs, and its budget.
+// minimum is known in closed form (followed along its diagonal), +inf pairs, its budget, and
+// its costs solved on two threads (the same path, each pair once, an error passed on).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "dp/chain_lattice_search.hpp"
@@ -114,6 +121,56 @@ TEST(ChainLatticeSearch, KeepsItsBudget) {
   EXPECT_LE(calls, 40);
   EXPECT_FALSE(r.converged);
   EXPECT_LT(r.f, 3 * 25.0 * 2);  // it moved downhill from the start
+}
+
+TEST(ChainLatticeSearch, TwoThreadsTakeTheSamePathAndSolveEachPairOnce) {
+  // A bumpy valley (a bowl plus the hashed costs), four variables: every lattice's best, the
+  // result and the count of costs are the same on one thread and on two, and on two threads
+  // no pair is solved twice.
+  auto bumpy = [](std::size_t k, double a, double b) {
+    const double x = std::isnan(a) ? 0.0 : a, y = std::isnan(b) ? 0.0 : b;
+    return 0.2 * (x - 1.5) * (x - 1.5) + 0.1 * (y - x) * (y - x) + 0.05 * hashed_cost(k, a, b);
+  };
+  const std::vector<double> x0{-2.0, 3.0, 0.0, 4.0}, lo(4, -6.0), hi(4, 6.0);
+  const ChainLatticeResult one = chain_lattice_minimum(bumpy, x0, lo, hi, 1.0, 5, 100000, 1);
+  std::mutex mutex;
+  std::set<std::tuple<std::size_t, double, double>> seen;
+  std::atomic<int> calls{0}, repeats{0};
+  auto counted = [&](std::size_t k, double a, double b) {
+    ++calls;
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (!seen.emplace(k, std::isnan(a) ? -1e9 : a, std::isnan(b) ? -1e9 : b).second) ++repeats;
+    }
+    return bumpy(k, a, b);
+  };
+  const ChainLatticeResult two = chain_lattice_minimum(counted, x0, lo, hi, 1.0, 5, 100000, 2);
+  ASSERT_TRUE(one.converged);
+  EXPECT_TRUE(two.converged);
+  EXPECT_EQ(two.x, one.x);
+  EXPECT_EQ(two.f, one.f);
+  EXPECT_EQ(two.cost_evaluations, one.cost_evaluations);
+  EXPECT_EQ(two.lattice_bests, one.lattice_bests);
+  EXPECT_EQ(calls.load(), two.cost_evaluations);
+  EXPECT_EQ(repeats.load(), 0);
+}
+
+TEST(ChainLatticeSearch, ACostsErrorEndsTheSearchOnAnyThreadCount) {
+  // Two pairs of the first stage throw: the search passes on the error of the first in the
+  // stage's order, whichever thread met it.
+  auto failing = [](std::size_t k, double, double b) -> double {
+    if (k == 0 && b == 1.0) throw std::runtime_error("the pair at 1");
+    if (k == 0 && b == 3.0) throw std::runtime_error("the pair at 3");
+    return 0.0;
+  };
+  for (const int threads : {1, 2}) {
+    try {
+      chain_lattice_minimum(failing, {2.0, 2.0}, {-9.0, -9.0}, {9.0, 9.0}, 1.0, 2, 1000, threads);
+      ADD_FAILURE() << "no error on " << threads << " threads";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "the pair at 1") << threads << " threads";
+    }
+  }
 }
 
 }  // namespace
