@@ -15,7 +15,8 @@
 #     (target ecorail_layering_<room>, built with `all`).
 #
 # ecorail_base_room() makes the bottom room, base/ (ecorail_base, header-only): the error type
-# every room throws, the vector of the DP's large arrays (base/big_blocks.hpp), the include root
+# every room throws, the vector of the DP's large arrays (base/big_blocks.hpp), printf into a
+# string (base/format_text.hpp), the include root
 # ("dp/section_solve.hpp") and the definition that keeps Eigen's allocation the same as Debian's
 # Ceres. Every room is above it.
 
