@@ -188,7 +188,9 @@ class FleetEnergyModel {
   // or minus the substation energy); the search's two-train approximation.
   virtual std::vector<double> two_train_values_J(int lo_s, int hi_s, int threads) const;
   // `stop` (may be empty; asked from any thread) cuts a costly bound short: the model then
-  // returns the best bound it has by then, valid still and named so (a time limit keeps).
+  // returns the best bound it has by then, valid still and named so (a time limit keeps). The
+  // search may run it on a thread of its own while it calls the model's other const members
+  // (fleet/headway_optimiser.cpp, without a time limit), so it must not change the model.
   virtual FleetLowerBound lower_bound(const std::function<bool()>& stop = {}) const;
   // A cheaper model of the same trip and fleet whose good timetables are near this one's: the
   // search builds its structured starts on it when it does not price starts on this model
