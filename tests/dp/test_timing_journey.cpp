@@ -2,6 +2,7 @@
 // (dp/stage_prices.hpp), on a short level track at a coarse grid so the tests stay cheap.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -566,6 +567,43 @@ TEST(TimingJourney, AStopWithOneWindowGetsTheBestSplitOfTheTime) {
   EXPECT_LT(scan_best_s, l);
   EXPECT_LE(got_J, scan_best_J * (1.0 + 5e-4)) << "stop at " << stop_s << " s";
   EXPECT_LT(got_J, earliest_J) << "stop at " << stop_s << " s";
+}
+
+// The earlier latest arrivals (dp/timing_journey.cpp, earlier_arrivals), the fallback where
+// both the price search and the label search miss a window: the label search switched off, the
+// journey of the test above with its arrival binding at 320 s misses the earliest bound at
+// 1000 m, and is met with the latest arrival searched a tenth of the part's time earlier. That
+// run is the journey's own search with the arrival free up to there, so it costs no more than
+// the journey solved with that latest arrival as asked (it is feasible, not the least energy:
+// arriving at 300 s as asked costs 53 731.5 kJ, the fallback's 288 s 57 288.4 kJ,
+// docs/ttobench.md).
+TEST(TimingJourney, EarlierLatestArrivalsMeetWhatTheSearchesMiss) {
+  const physics::Train train = data::default_train();
+  const physics::Route track = test_track();
+  auto windows = [](double arrive_s) {
+    return std::vector<TimingWindow>{stop_at(0, 0, 0), pass_at(1000, 120, 400),
+                                     pass_at(1100, 0, 126), stop_at(3000, 0, arrive_s)};
+  };
+  TimingJourneyOptions o = coarse_timing();
+  o.label_search_last_resort = false;
+  const TimingJourneySolution sol = solve_timing_journey(train, track, windows(320), o, "held");
+  ASSERT_TRUE(sol.summary.IsSolutionUsable()) << sol.summary.FullReport();
+  ASSERT_TRUE(sol.windows_met);
+  EXPECT_GE(sol.windows[1].time_s, 120.0 - o.time_tolerance_s);
+  EXPECT_LE(sol.windows[2].time_s, 126.0 + o.time_tolerance_s);
+  EXPECT_LE(sol.windows[3].time_s, 320.0 + o.time_tolerance_s);
+  const double searched_s = sol.parts.at(0).arrival_target_s;
+  EXPECT_LT(searched_s, 320.0);  // the part was searched again, earlier
+  EXPECT_TRUE(std::any_of(sol.summary.warnings.begin(), sol.summary.warnings.end(),
+                          [](const std::string& w) {
+                            return w.find("latest arrival searched at") != std::string::npos;
+                          }))
+      << sol.summary.FullReport();
+  const TimingJourneySolution asked =
+      solve_timing_journey(train, track, windows(searched_s), o, "held_earlier");
+  ASSERT_TRUE(asked.windows_met) << asked.summary.FullReport();
+  EXPECT_LE(sol.summary.traction_energy_kJ, 1.001 * asked.summary.traction_energy_kJ)
+      << searched_s << " s";
 }
 
 }  // namespace
