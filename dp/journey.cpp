@@ -455,19 +455,27 @@ JourneySolution solve_journey(const SectionLibrary& library, std::size_t first, 
     out.sections.push_back(std::move(sec));
   }
   if (options.measure_marginals) {
-    // -(dE/dT) by central difference of two fresh solves of the section alone.
+    // -(dE/dT) by central difference of two fresh solves of the section alone. The 2n solves
+    // run side by side, not a section's two in turn: a journey's longest section would else
+    // keep one thread busy while the others wait (a 34.8 km TTOBench section: docs/performance.md).
     const double h = options.marginal_step_s;
     const int n = static_cast<int>(out.sections.size());
+    std::vector<double> cost_J(2 * static_cast<std::size_t>(n), NAN),
+        time_s(2 * static_cast<std::size_t>(n), NAN);  // [2i]: slower by h, [2i + 1]: faster
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < 2 * n; ++k) {
+      const int i = k / 2;
       const double t = out.sections[i].run.sim.running_time_s;
       if (t - h < min_times[i]) continue;
       const StartState start = i == 0 ? options.start : StartState{};
-      const auto slow = solve_for_time(*engines[i], t + h, options.search, start);
-      const auto fast = solve_for_time(*engines[i], t - h, options.search, start);
+      const auto r = solve_for_time(*engines[i], k % 2 == 0 ? t + h : t - h, options.search, start);
+      cost_J[k] = engines[i]->energy_cost_J(r.run.sim);
+      time_s[k] = r.run.sim.running_time_s;
+    }
+    for (int i = 0; i < n; ++i) {
+      if (std::isnan(cost_J[2 * i])) continue;
       out.sections[i].marginal_J_per_s =
-          (engines[i]->energy_cost_J(fast.run.sim) - engines[i]->energy_cost_J(slow.run.sim)) /
-          (slow.run.sim.running_time_s - fast.run.sim.running_time_s);
+          (cost_J[2 * i + 1] - cost_J[2 * i]) / (time_s[2 * i] - time_s[2 * i + 1]);
     }
   }
   // Every section must come to rest at its stop: a journey with one that does not is never a
