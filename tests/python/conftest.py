@@ -94,3 +94,14 @@ def ttobench_files(tmp_path):
         return name
 
     return "track.json", "train.json", write_journey
+
+
+@pytest.fixture(scope="session")
+def cache_dir():
+    """The frontier cache of the delay and Monte Carlo tests: one directory in the build tree."""
+    base = os.environ.get("ECORAIL_BINARY_DIR")
+    if not base:
+        pytest.fail("ECORAIL_BINARY_DIR must name the build tree (set by ctest)")
+    path = os.path.join(base, "test-cache", "python")
+    os.makedirs(path, exist_ok=True)
+    return path
