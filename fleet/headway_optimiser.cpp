@@ -245,9 +245,9 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   // start: its DP and the search's starts and annealing share the cores, and 2.1's default run
   // ends in 57 s instead of 66 s (median of three, docs/fleet.md). With a time limit it is taken
   // first and may take until half of it, on every thread (then the best bound it has, named
-  // so): beside the search it would get half the cores for that time and often finish no DP
-  // run. The relaxation's maximisers (a start) may take up to 0.6 of it all. share_past(share,
-  // from_s): with a time limit, past from_s plus `share` of what the limit leaves after it.
+  // so): beside the search it would get half the cores for that share of the limit. The
+  // relaxation's maximisers (a start) may take up to 0.6 of it all. share_past(share, from_s):
+  // with a time limit, past from_s plus `share` of what the limit leaves after it.
   const auto share_past = [&](double share, double from_s = 0.0) {
     return [&options, t0, share, from_s] {
       return options.time_limit_s > 0.0 &&
