@@ -14,7 +14,6 @@
 // (dp/timing_binding_pins.hpp). A local search: the best of each lattice, not a global minimum.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -61,13 +60,13 @@ ChainLatticeResult chain_lattice_minimum(const Cost& cost, const std::vector<dou
   auto value = [&](std::size_t i, long j) { return x0[i] + unit * static_cast<double>(j); };
   using Key = std::tuple<std::size_t, long, long>;
   std::map<Key, double> known;
-  // Solves the costs of keys not known yet, side by side.
+  // Solves the costs of keys not known yet, side by side (a stage's keys are distinct: each
+  // variable's values are).
   const int team = threads > 0 ? threads : omp_get_max_threads();
   auto solve_costs = [&](const std::vector<Key>& keys) {
     std::vector<Key> fresh;
     for (const Key& key : keys) {
-      if (known.count(key) == 0 && std::find(fresh.begin(), fresh.end(), key) == fresh.end())
-        fresh.push_back(key);
+      if (known.count(key) == 0) fresh.push_back(key);
     }
     const long count = static_cast<long>(fresh.size());
     std::vector<double> costs(fresh.size(), kInf);

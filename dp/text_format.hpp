@@ -1,7 +1,7 @@
-// printf-style formatting into a std::string, for solver reports and error messages.
+// The solvers' text: format_text (printf into a std::string, base/format_text.hpp, re-exported
+// here), the time price as text and the result block of the full reports.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 

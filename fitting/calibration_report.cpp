@@ -2,7 +2,6 @@
 // solver summary (docs/calibration.md shows one).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "base/format_text.hpp"

@@ -269,7 +269,8 @@ HeadwayOptimiserResult optimise_headways(const FleetEnergyModel& model, const Fl
   };
   report("bound", 0.0, NAN);
   std::optional<energy::FleetLowerBound> bound_taken;
-  std::atomic<bool> leaving{false};  // the search ends (or throws): the bound stops at once
+  // Set when the search throws (an error, a cancel): the bound stops at its next check.
+  std::atomic<bool> leaving{false};
   std::future<energy::FleetLowerBound> bound_beside;
   if (threads > 1 && !(options.time_limit_s > 0.0)) {
     bound_beside = std::async(std::launch::async, [&model, &leaving, threads] {
