@@ -29,11 +29,11 @@ namespace {
 // Whether transition t out of node j of stage i passes its band's point (at_fraction of the
 // way to stage i + 1) inside the band: v^2 linear in the distance between the node's speed and
 // the speed it reaches (interpolated between the next stage's nodes as the sweep does).
-bool passes_inside(const StageGrid& grid, int i, int j, int next_offset, const Transition& t,
+bool passes_inside(const StageGrid& grid, int i, int j, const Transition& t,
                    const SpeedBand& band) {
   const double v0 = grid.speed(i, j);
-  double v1 = grid.speed(i + 1, t.lower - next_offset);
-  if (t.weight > 0.0) v1 += t.weight * (grid.speed(i + 1, t.lower + 1 - next_offset) - v1);
+  double v1 = grid.speed(i + 1, t.lower);
+  if (t.weight > 0.0) v1 += t.weight * (grid.speed(i + 1, t.lower + 1) - v1);
   return band.passes(v0 * v0, v1 * v1, band.at_fraction);
 }
 
@@ -52,17 +52,19 @@ struct StageSweep {
 
   template <bool kTransitionBand>
   void nodes(int from, int to) const {
+    const double* J_next = J + next_offset;
     for (int node = from; node < to; ++node) {
       double best_cost = kInfeasible;
       std::uint8_t best_c = 0;
+      const Transition* out = table.row(i, node - begin);
       for (int k = 0; k < physics::kControlCount; ++k) {
-        const Transition& t = table.at(node, static_cast<physics::Control>(k));
+        const Transition& t = out[k];
         if (t.lower < 0) continue;
         if constexpr (kTransitionBand) {
-          if (!passes_inside(grid, i, node - begin, next_offset, t, *transition_band)) continue;
+          if (!passes_inside(grid, i, node - begin, t, *transition_band)) continue;
         }
-        double next = J[t.lower];
-        if (t.weight > 0.0) next += t.weight * (J[t.lower + 1] - next);
+        double next = J_next[t.lower];
+        if (t.weight > 0.0) next += t.weight * (J_next[t.lower + 1] - next);
         const double cost = t.energy_J + lambda * t.time_s + next;
         if (cost < best_cost) {
           best_cost = cost;

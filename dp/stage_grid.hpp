@@ -34,6 +34,11 @@ class StageGrid {
   int next_stage_after(double s_m) const;
   // Lower node (global index) and interpolation weight of speed v at stage i.
   void locate(int i, double v_ms, int* lower, double* weight) const;
+  // Whether locate(i, v) falls between two uniform nodes: then its lower node is offset(i) plus
+  // floor(max(0, v) / dv) and its weight that quotient's fraction, the same at every stage.
+  bool locates_between_uniform_nodes(int i, double v_ms) const {
+    return uniform_[i] != 0 && v_ms < top_[i] && v_ms < (uniform_[i] - 1) * dv_;
+  }
 
  private:
   double dv_;

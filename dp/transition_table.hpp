@@ -27,13 +27,14 @@
 
 namespace ecorail::dp {
 
-// No initialisers: the table's build writes every entry, so the table's memory (hundreds of
-// megabytes on a long section) is first touched by the build's threads, not cleared before.
+// One transition, its end located on the next stage: `lower` counts from that stage's first node
+// (-1: infeasible, the train would stop short). No initialisers: the table's build writes every
+// entry.
 struct Transition {
   double energy_J;
   double time_s;
   double weight;
-  std::int32_t lower;  // -1: infeasible (the train would stop short)
+  std::int32_t lower;
 };
 
 class TransitionTable {
@@ -43,18 +44,39 @@ class TransitionTable {
                   const physics::StepSettings& step, bool share = true);
   // Which chunks of the next stage each chunk reads (for the sweep's scheduling).
   const ChunkDependencies& dependencies() const { return deps_; }
-  const Transition& at(int node, physics::Control c) const {
-    return table_[static_cast<std::size_t>(node) * physics::kControlCount + static_cast<int>(c)];
+  // The kControlCount transitions out of node j of stage i (lower counted on stage i + 1).
+  const Transition* row(int i, int j) const {
+    const StageRows& r = rows_[i];
+    if (j >= r.shared_from && j < r.shared_to) {
+      return class_rows_.data() + (r.class_row + j) * physics::kControlCount;
+    }
+    const long own = r.own_row + (j < r.shared_from ? j : j - (r.shared_to - r.shared_from));
+    return own_rows_.data() + own * physics::kControlCount;
   }
+  // The transition out of a node (its global index) by control c, lower as a global index too
+  // (-1: infeasible). For callers that walk nodes, not stages; the sweep reads row().
+  Transition at(int node, physics::Control c) const;
   // What the build did: classes of alike stages, transitions integrated once per class, and
   // entries integrated stage by stage or taken from a class.
   int stage_classes() const { return stage_classes_; }
   long class_integrations() const { return class_integrations_; }
   long stage_integrations() const { return stage_integrations_; }
   long shared_entries() const { return shared_entries_; }
+  // The entries kept: the classes' rows and the stages' own rows (a stage reads its class's rows
+  // where every control's transition is its own integration bit for bit).
+  long stored_entries() const { return static_cast<long>(class_rows_.size() + own_rows_.size()); }
 
  private:
-  BigVector<Transition> table_;
+  // Where a stage's rows are: nodes [shared_from, shared_to) read the class's rows (from
+  // class_row on), the others their own (from own_row on, in node order).
+  struct StageRows {
+    long class_row = 0, own_row = 0;
+    int shared_from = 0, shared_to = 0;
+  };
+  std::vector<StageRows> rows_;
+  std::vector<int> stage_offset_;  // the grid's first node of each stage, for at()
+  std::vector<Transition> class_rows_;
+  BigVector<Transition> own_rows_;
   ChunkDependencies deps_;
   int stage_classes_ = 0;
   long class_integrations_ = 0;

@@ -172,19 +172,20 @@ Substep Motion::substep_impl(const RouteSegment& seg, double s_m, double e0, dou
 }
 
 Advance Motion::advance(double s0, double e0, double s1, Control c, const StepSettings& st) const {
-  return advance_impl<true>(s0, e0, s1, c, st, nullptr, nullptr);
+  return advance_impl<true>(s0, e0, s1, c, st, nullptr, nullptr, nullptr);
 }
 
 Motion::FreeAdvance Motion::advance_unsupervised(double s0, double e0, double s1, Control c,
                                                  const StepSettings& st) const {
   FreeAdvance out;
-  out.advance = advance_impl<false>(s0, e0, s1, c, st, &out.e_max, &out.stopped);
+  out.advance =
+      advance_impl<false>(s0, e0, s1, c, st, &out.e_max, &out.stopped, &out.stop_short_of_end_m);
   return out;
 }
 
 template <bool kSupervised>
 Advance Motion::advance_impl(double s0, double e0, double s1, Control c, const StepSettings& st,
-                             double* e_max, bool* stopped) const {
+                             double* e_max, bool* stopped, double* stop_short_m) const {
   Advance out;
   double s = s0;
   double e = e0;
@@ -205,6 +206,7 @@ Advance Motion::advance_impl(double s0, double e0, double s1, Control c, const S
     if (sub.stopped) {
       // A stop that lands on the end position (within a millimetre) is an arrival, not a stall.
       out.stalled = s + sub.length_m < s1 - 1e-3;
+      if (stop_short_m) *stop_short_m = s1 - (s + sub.length_m);
       break;
     }
     s = next;

@@ -81,6 +81,9 @@ class Motion {
     Advance advance;
     double e_max = 0.0;    // largest e at any substep end
     bool stopped = false;  // some substep came to rest (advance.stalled then needs s1)
+    // Where it came to rest, short of s1 (0 when it did not stop): a stall by more than a
+    // millimetre and a rounding is a stall wherever the same integration starts.
+    double stop_short_of_end_m = 0.0;
   };
   FreeAdvance advance_unsupervised(double s0_m, double e0, double s1_m, Control c,
                                    const StepSettings& st) const;
@@ -116,7 +119,7 @@ class Motion {
                        int rk_order, double e_cap_end) const;
   template <bool kSupervised>
   Advance advance_impl(double s0_m, double e0, double s1_m, Control c, const StepSettings& st,
-                       double* e_max, bool* stopped) const;
+                       double* e_max, bool* stopped, double* stop_short_m) const;
 
   const Train* train_;
   const Route* route_;

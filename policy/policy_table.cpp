@@ -135,7 +135,7 @@ std::vector<double> time_to_go(const dp::SectionEngine& engine, const dp::ValueF
   for (int i = last - 1; i >= 0; --i) {
     for (int node = grid.offset(i); node < grid.offset(i) + grid.node_count(i); ++node) {
       if (!dp::is_feasible(value.cost_to_go[node])) continue;
-      const dp::Transition& t =
+      const dp::Transition t =
           engine.transitions().at(node, static_cast<physics::Control>(value.best[node]));
       if (t.lower < 0) continue;
       double next = T[t.lower];
