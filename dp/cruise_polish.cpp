@@ -327,24 +327,27 @@ class Polisher {
     const double lo_limit = program[hold - 1].from_m + 1e-6;
     const double hi_limit =
         (hold + 1 < program.size() ? program[hold + 1].from_m : engine_.route().length_m()) - 1e-6;
+    // Consecutive runs differ from the hold's start on (the earlier of the two starts), so
+    // each resumes, bit for bit, from the run before it. The run is kept there alone: the
+    // candidate returned is always the last one run, and takes its run from recent_ then (a
+    // copy per run, a million trace points at the fine step, cost the GPOPS-II case of
+    // docs/ttobench.md 88 MiB of its peak memory and about 6 % of its wall time).
     auto f_at = [&](double x, Candidate* out) {
       program[hold].from_m = x;
-      Candidate c;
-      // Consecutive runs differ from the hold's start on (the earlier of the two starts), so
-      // each resumes, bit for bit, from the run before it.
-      c.sim = simulate(program, step_m, recent_);
-      c.program = program;
-      recent_ = c.sim;
+      recent_ = simulate(program, step_m, recent_);
+      out->program = program;
+      out->cost_J = engine_.energy_cost_J(recent_);
       // A run that does not arrive counts as too slow: the hold must start later.
-      const double f = ends(c.sim) ? c.sim.running_time_s - target_s_ : kInf;
-      c.cost_J = engine_.energy_cost_J(c.sim);
-      *out = std::move(c);
-      return f;
+      return ends(recent_) ? recent_.running_time_s - target_s_ : kInf;
+    };
+    auto last_run = [&](Candidate c) {
+      c.sim = recent_;
+      return c;
     };
     Candidate best;
     double x0 = std::min(std::max(program[hold].from_m, lo_limit), hi_limit);
     double f0 = f_at(x0, &best);
-    if (std::abs(f0) <= tolerance_s_) return best;
+    if (std::abs(f0) <= tolerance_s_) return last_run(std::move(best));
     // Bracket by doubling steps from x0 (f falls with x).
     double lo = lo_limit, hi = hi_limit, f_lo = kInf, f_hi = -kInf;
     double step = 8.0;
@@ -354,7 +357,7 @@ class Polisher {
       for (double x = x0 + step;; step *= 2.0, x = x0 + step) {
         x = std::min(x, hi_limit);
         const double f = f_at(x, &trial);
-        if (std::abs(f) <= tolerance_s_) return trial;
+        if (std::abs(f) <= tolerance_s_) return last_run(std::move(trial));
         if (f < 0.0) {
           hi = x, f_hi = f;
           break;
@@ -367,7 +370,7 @@ class Polisher {
       for (double x = x0 - step;; step *= 2.0, x = x0 - step) {
         x = std::max(x, lo_limit);
         const double f = f_at(x, &trial);
-        if (std::abs(f) <= tolerance_s_) return trial;
+        if (std::abs(f) <= tolerance_s_) return last_run(std::move(trial));
         if (f > 0.0) {
           lo = x, f_lo = f;
           break;
@@ -387,7 +390,7 @@ class Polisher {
         },
         lo, f_lo, hi, f_hi, kMaxTimeSolves);
     root.narrow([&] { return met; }, kMinBracket_m);
-    if (met) return trial;
+    if (met) return last_run(std::move(trial));
     return {};
   }
 
