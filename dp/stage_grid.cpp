@@ -51,10 +51,33 @@ void StageGrid::locate(int i, double v, int* lower, double* weight) const {
     *weight = (v - last_uniform) / (top - last_uniform);
     return;
   }
+  int k;
+  double w;
+  uniform_position(v, &k, &w);
+  if (k <= u - 2) {
+    *lower = offset_[i] + k;
+    *weight = w;
+    return;
+  }
+  // Rounding put v / dv on the last uniform node: the interval below it, at its far end.
   const double x = std::max(0.0, v) / dv_;
-  const int k = std::min(u - 2, static_cast<int>(x));
-  *lower = offset_[i] + k;
-  *weight = x - k;
+  *lower = offset_[i] + u - 2;
+  *weight = x - (u - 2);
+}
+
+void StageGrid::uniform_position(double v, int* lower, double* weight) const {
+  const double x = std::max(0.0, v) / dv_;
+  *lower = static_cast<int>(x);
+  *weight = x - *lower;
+}
+
+bool StageGrid::locates_uniformly(int i, double v) const {
+  const int u = uniform_[i];
+  if (u == 0 || !(v < top_[i]) || !(v < (u - 1) * dv_)) return false;
+  int k;
+  double w;
+  uniform_position(v, &k, &w);
+  return k <= u - 2;
 }
 
 }  // namespace ecorail::dp

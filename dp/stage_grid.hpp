@@ -34,11 +34,12 @@ class StageGrid {
   int next_stage_after(double s_m) const;
   // Lower node (global index) and interpolation weight of speed v at stage i.
   void locate(int i, double v_ms, int* lower, double* weight) const;
-  // Whether locate(i, v) falls between two uniform nodes: then its lower node is offset(i) plus
-  // floor(max(0, v) / dv) and its weight that quotient's fraction, the same at every stage.
-  bool locates_between_uniform_nodes(int i, double v_ms) const {
-    return uniform_[i] != 0 && v_ms < top_[i] && v_ms < (uniform_[i] - 1) * dv_;
-  }
+  // Where v lies among the uniform speeds 0, dv, 2 dv, ... of any stage: the lower one's index
+  // floor(max(0, v) / dv) and the fraction above it (locate's arithmetic between uniform nodes).
+  void uniform_position(double v_ms, int* lower, double* weight) const;
+  // Whether locate(i, v) is offset(i) plus uniform_position(v), bit for bit: v below the top
+  // node and between two uniform nodes of stage i.
+  bool locates_uniformly(int i, double v_ms) const;
 
  private:
   double dv_;

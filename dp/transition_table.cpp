@@ -49,13 +49,19 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
   constexpr int K = physics::kControlCount;
   stage_offset_.resize(grid.stage_count());
   for (int i = 0; i < grid.stage_count(); ++i) stage_offset_[i] = grid.offset(i);
-  // An entry from an integration out of stage i; its lower node counted on stage i + 1.
-  auto entry_of = [&](int i, const physics::Advance& adv) {
-    if (adv.stalled) return Transition{0.0, 0.0, 0.0, -1};
+  constexpr Transition kInfeasibleEntry{0.0, 0.0, 0.0, -1};
+  // An integration's cost and time; its end is located by the caller.
+  auto priced = [&](const physics::Advance& adv) {
     Transition t;
     t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
                                adv.traction_input_J, adv.regen_J);
     t.time_s = adv.time_s;
+    return t;
+  };
+  // An entry from an integration out of stage i; its lower node counted on stage i + 1.
+  auto entry_of = [&](int i, const physics::Advance& adv) {
+    if (adv.stalled) return kInfeasibleEntry;
+    Transition t = priced(adv);
     grid.locate(i + 1, physics::speed_from_e(adv.e_end), &t.lower, &t.weight);
     t.lower -= grid.offset(i + 1);
     return t;
@@ -102,8 +108,8 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
   auto stalls_everywhere = [](const physics::Motion::FreeAdvance& f) {
     return f.stopped && f.advance.stalled && f.stop_short_of_end_m > kStallMargin_m;
   };
-  // The class's rows: each entry located as between uniform nodes (a stage reads it only where
-  // its own locate says so, below).
+  // The class's rows: each entry located among the uniform speeds (a stage reads it only where
+  // its own locate gives the same, below).
   class_rows_.resize(static_cast<std::size_t>(shared_total) * K);
   const double dv = grid.dv_ms();
 #pragma omp parallel for schedule(dynamic, 16)
@@ -118,16 +124,11 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
       const physics::Advance& adv = shared[e].advance;
       Transition& t = class_rows_[e];
       if (adv.stalled || (shared[e].stopped && !stalls_everywhere(shared[e]))) {
-        t = {0.0, 0.0, 0.0, -1};
+        t = kInfeasibleEntry;
         continue;
       }
-      t.energy_J = energy_cost_J(objective, motion.train(), adv.traction_work_J, adv.brake_work_J,
-                                 adv.traction_input_J, adv.regen_J);
-      t.time_s = adv.time_s;
-      // locate()'s arithmetic between uniform nodes.
-      const double x = std::max(0.0, physics::speed_from_e(adv.e_end)) / dv;
-      t.lower = static_cast<int>(x);
-      t.weight = x - t.lower;
+      t = priced(adv);
+      grid.uniform_position(physics::speed_from_e(adv.e_end), &t.lower, &t.weight);
     }
   }
   stage_classes_ = static_cast<int>(representative.size());
@@ -156,8 +157,8 @@ TransitionTable::TransitionTable(const physics::Motion& motion, const StageGrid&
       for (int c = 0; c < K && whole; ++c) {
         const physics::Motion::FreeAdvance* f = class_entry(i, j, c);
         whole = f != nullptr &&
-                (f->advance.stalled || grid.locates_between_uniform_nodes(
-                                           i + 1, physics::speed_from_e(f->advance.e_end)));
+                (f->advance.stalled ||
+                 grid.locates_uniformly(i + 1, physics::speed_from_e(f->advance.e_end)));
       }
       if (whole) continue;
       if (j - from > run_length) run_from = from, run_length = j - from;
