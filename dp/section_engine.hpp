@@ -66,6 +66,10 @@ struct LambdaRun {
   // evaluation): what its fine run (SectionEngine::fine_run) needs besides, so that it costs no
   // second sweep or extraction. Empty for a fine run.
   std::shared_ptr<const KeptForFineRun> kept;
+  // Where a cruise was held (EngineOptions::cruise_as_hold): how much dearer the held run is
+  // than the grid's run as extracted, at this run's time prices (cost plus price times time),
+  // as a share of the grid's; 0 when the held run is no dearer or nothing was held.
+  double held_excess_share = 0.0;
 };
 
 class SectionEngine {
@@ -84,6 +88,11 @@ class SectionEngine {
   // would be built bit for bit the same. Many stops over identical track (a TTOBench track of
   // 20 003 stops 10 m apart) then build one table. Builds its own when twin holds none.
   SectionEngine(const physics::Route& route, const SectionEngine& twin);
+  // The engine twin is, with its cruises left as the grid has them (options().cruise_as_hold
+  // false) and its transition table shared: a cruise is held after the sweep, so the table is
+  // the same. dp::solve_for_time searches on it where the held runs cost more than the grid's.
+  struct GridCruises {};
+  SectionEngine(const SectionEngine& twin, GridCruises);
   SectionEngine(const SectionEngine&) = delete;
   SectionEngine& operator=(const SectionEngine&) = delete;
 

@@ -81,6 +81,9 @@ SectionSolution solve_section(const physics::Train& train, const physics::Route&
   s.cruise_polish_simulations = found.cruise_polish.simulations;
   s.cruise_polish_saving_kJ =
       units::J_to_kJ(found.cruise_polish.cost_before_J - found.cruise_polish.cost_after_J);
+  s.grid_cruises_searched = found.grid_cruises_searched;
+  s.grid_cruises_kept = found.grid_cruises_kept;
+  s.grid_cruises_saving_kJ = units::J_to_kJ(found.grid_cruises_saving_J);
   s.build_wall_s = std::chrono::duration<double>(t1 - t0).count();
   s.search_wall_s = std::chrono::duration<double>(t2 - t1).count();
   s.total_wall_s = std::chrono::duration<double>(t2 - t0).count();
@@ -156,6 +159,13 @@ std::string SectionSolveSummary::FullReport() const {
     r += format_text(
         "  %-28s one hold, %d short phases dropped, %d re-simulations, %.1f kJ saved\n",
         "Cruise polish", cruise_dropped_phases, cruise_polish_simulations, cruise_polish_saving_kJ);
+  }
+  if (grid_cruises_searched) {
+    r += format_text("  %-28s %s\n", "Grid's own cruises",
+                     grid_cruises_kept ? format_text("kept, %.1f kJ cheaper than the held ones",
+                                                     grid_cruises_saving_kJ)
+                                             .c_str()
+                                       : "searched, not cheaper than the held ones");
   }
   r += format_text("  %-28s %.4f s build, %.4f s search, %.4f s total\n", "Wall time", build_wall_s,
                    search_wall_s, total_wall_s);

@@ -132,7 +132,26 @@ struct TimeSearchResult {
   // Measured when the search could not meet a time (0: not measured).
   double max_time_s = 0.0;
   CruisePolishReport cruise_polish;  // what the cruise polish did to the converged run
+  // How much more the converged run (before its polish) cost held than the grid's own run at
+  // its price, as a share of the priced cost (LambdaRun::held_excess_share); above
+  // kGridCruisesCheckShare the time is
+  // searched again with the grid's own cruises (grid_cruises_searched), and that run is kept
+  // when it costs less (grid_cruises_kept, saving grid_cruises_saving_J).
+  double held_excess_share = 0.0;
+  bool grid_cruises_searched = false;
+  bool grid_cruises_kept = false;
+  double grid_cruises_saving_J = 0.0;
 };
+
+// A search whose converged run costs this share more held than as the grid has it, at its time
+// price, is searched again with the grid's own cruises (dp::solve_for_time). Measured at the
+// converged runs (2026-12-07): 0 on the reference line's A5 -> A6 at every second from 140 s to
+// 160 s but one (0.003 %); on TTOBench tracks at their minimum time + 10 %, CH_Fribourg_Bern
+// 0.087 % (FLIRT; the grid's own run 0.30 % cheaper in the end) and 0.92 % (VIRM6; 4.3 %
+// cheaper), 00_var_speed_limit_110 0.72 % (KISS) and 00_var_gradient_minus_10 0.29 % (VIRM6),
+// where the held run's polish ends cheaper and is kept. It decides only whether the second
+// search runs (it costs about one more search); the cheaper run is kept either way.
+inline constexpr double kGridCruisesCheckShare = 2e-4;
 
 // Moves one switch point out of full traction so the re-simulated time matches the target.
 // Returns false if no switch point can reach it. With search_step_m above the engine's fine step
@@ -178,7 +197,9 @@ class LatticeRuns {
 // From rest at the departure, or (start given) for the rest of the section from a mid-run state
 // in the remaining running time target_time_s. InfeasibleTimeError below the flat-out time,
 // LongTimeError above the slow limit; otherwise converged says whether the time was met by a
-// run that arrives.
+// run that arrives. Where the converged run's held cruises cost more than the grid's own at its
+// price (held_excess_share above kGridCruisesCheckShare), the time is searched again on the
+// grid's own cruises and the cheaper run returned (grid_cruises_searched, grid_cruises_kept).
 TimeSearchResult solve_for_time(const SectionEngine& engine, double target_time_s,
                                 const TimeSearchOptions& options, const StartState& start = {},
                                 LatticeRuns* memo = nullptr);

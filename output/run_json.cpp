@@ -72,6 +72,10 @@ nlohmann::json section_solution_json(const dp::SectionSolution& solution) {
                                     {"simulations", s.cruise_polish_simulations},
                                     {"saving_kJ", s.cruise_polish_saving_kJ}};
   }
+  if (s.grid_cruises_searched) {
+    j["search"]["grid_cruises"] = {{"kept", s.grid_cruises_kept},
+                                   {"saving_kJ", s.grid_cruises_saving_kJ}};
+  }
   if (s.min_regime.active()) {
     j["min_regime"] = {{"min_length_m", s.min_regime.min_length_m},
                        {"min_duration_s", s.min_regime.min_duration_s},
