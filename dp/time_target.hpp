@@ -145,8 +145,8 @@ struct TimeSearchResult {
 
 // A search whose converged run costs this share more held than as the grid has it, at its time
 // price, is searched again with the grid's own cruises (dp::solve_for_time). Measured at the
-// converged runs (2026-12-07): 0 on the reference line's A5 -> A6 at every second from 140 s to
-// 160 s but one (0.003 %); on TTOBench tracks at their minimum time + 10 %, CH_Fribourg_Bern
+// converged runs (2026-12-07): 0 on the reference line's A5 -> A6 every 2 s from 140 s to
+// 160 s but at 146 s (0.003 %); on TTOBench tracks at their minimum time + 10 %, CH_Fribourg_Bern
 // 0.087 % (FLIRT; the grid's own run 0.30 % cheaper in the end) and 0.92 % (VIRM6; 4.3 %
 // cheaper), 00_var_speed_limit_110 0.72 % (KISS) and 00_var_gradient_minus_10 0.29 % (VIRM6),
 // where the held run's polish ends cheaper and is kept. It decides only whether the second
