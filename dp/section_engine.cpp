@@ -266,8 +266,9 @@ namespace {
 
 // A run's cost by the objective plus its running time at the value function's time prices
 // (each trace step at the price of the stage it starts in): the sum the sweep minimised.
-double priced_cost_J(const StageGrid& grid, const ValueFunction& value, const SectionEngine& engine,
+double priced_cost_J(const SectionEngine& engine, const ValueFunction& value,
                      const physics::SimulationResult& sim) {
+  const StageGrid& grid = engine.grid();
   double time_cost_J = 0.0;
   if (value.stage_lambda.empty()) {
     time_cost_J = value.lambda * sim.running_time_s;
@@ -310,45 +311,44 @@ LambdaRun SectionEngine::run_program(const ValueFunction& value, physics::Contro
     resume_base_ = std::move(kept);
   }
   if (options_.cruise_as_hold) {
-    // A hold that would brake below the limit (a descent) coasts instead. Each trial differs
-    // from the run before it only from its new coast on, so it resumes from that run.
-    // (The first trial resumes from the run it is given, unchanged until it returns.)
-    auto coast_braking_holds = [&](physics::ControlProgram& program,
-                                   physics::SimulationResult& sim) {
-      const physics::SimulationResult& given_sim = sim;
-      bool first_trial = true;
-      physics::SimulationResult last_sim;
-      program = coast_instead_of_braking_holds(
-          program, sim, envelope_, [&](const physics::ControlProgram& p) {
-            physics::SimulationResult trial_sim =
-                resimulate(p, start, resim_step_m, first_trial ? given_sim : last_sim);
-            first_trial = false;
-            last_sim = trial_sim;
-            return trial_sim;
-          });
-    };
     // A stage-priced run cruises at a different speed on each side of a price change, so its
     // cruises are held stretch by stretch.
     physics::ControlProgram held =
         value.stage_lambda.empty()
             ? hold_cruising(out.program, out.sim)
             : hold_cruising_by_stretch(out.program, out.sim, price_changes_m(grid_, value));
-    if (held.size() == out.program.size()) {
-      coast_braking_holds(out.program, out.sim);
-    } else {
+    // The grid's run as extracted, priced, where a cruise is held (NAN where none is).
+    double grid_priced_J = NAN;
+    if (held.size() != out.program.size()) {
+      grid_priced_J = priced_cost_J(*this, value, out.sim);
       // The held program equals the extracted one up to its first held cruise: resumed.
-      physics::SimulationResult held_sim = resimulate(held, start, resim_step_m, out.sim);
-      coast_braking_holds(held, held_sim);
-      // The held run is kept (the cruise polish starts from its holds), and what the grid's own
-      // run as extracted saves at the run's time prices is recorded: a run of phases that only
-      // looks like a saw tooth (a ride of a limit, a long coast into a lower limit) can be held
-      // dearer (CH_Fribourg_Bern, FLIRT, 5 m x 0.1 km/h: 0.6 % at 743 kJ/s), and dp::solve_for_time
-      // then searches the grid's own runs too (dp/time_target.hpp).
-      const double held_J = priced_cost_J(grid_, value, *this, held_sim);
-      const double grid_J = priced_cost_J(grid_, value, *this, out.sim);
-      if (held_J > grid_J && grid_J > 0.0) out.held_excess_share = held_J / grid_J - 1.0;
+      out.sim = resimulate(held, start, resim_step_m, out.sim);
       out.program = std::move(held);
-      out.sim = std::move(held_sim);
+    }
+    // A hold that would brake below the limit (a descent) coasts instead. Each trial differs
+    // from the run before it only from its new coast on, so it resumes from that run.
+    // (The first trial resumes from the run as extracted, unchanged until it returns.)
+    const physics::SimulationResult& extracted_sim = out.sim;
+    bool first_trial = true;
+    physics::SimulationResult last_sim;
+    out.program = coast_instead_of_braking_holds(
+        out.program, out.sim, envelope_, [&](const physics::ControlProgram& p) {
+          physics::SimulationResult sim =
+              resimulate(p, start, resim_step_m, first_trial ? extracted_sim : last_sim);
+          first_trial = false;
+          last_sim = sim;
+          return sim;
+        });
+    // The held run is kept (the cruise polish starts from its holds), and what the grid's own
+    // run as extracted saves at the run's time prices is recorded: a run of phases that only
+    // looks like a saw tooth (a ride of a limit, a long coast into a lower limit) can be held
+    // dearer (CH_Fribourg_Bern, FLIRT, 5 m x 0.1 km/h: 0.6 % at 743 kJ/s), and dp::solve_for_time
+    // then searches the grid's own runs too (dp/time_target.hpp).
+    if (grid_priced_J > 0.0) {
+      const double held_priced_J = priced_cost_J(*this, value, out.sim);
+      if (held_priced_J > grid_priced_J) {
+        out.held_excess_share = held_priced_J / grid_priced_J - 1.0;
+      }
     }
   }
   out.cost_J = energy_cost_J(out.sim);

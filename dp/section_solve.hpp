@@ -64,9 +64,9 @@ struct SectionSolveSummary {
   int cruise_dropped_phases = 0;
   int cruise_polish_simulations = 0;
   double cruise_polish_saving_kJ = 0.0;
-  // Whether the time was searched again with the grid's own cruises (the held runs cost more
-  // than the grid's at some price: dp::kGridCruisesCheckShare), and whether that run, cheaper,
-  // was kept and by how much (energy by the objective).
+  // Whether the time was searched again with the grid's own cruises (the converged run cost
+  // more held than the grid's at its price: dp::kGridCruisesCheckShare), and whether that run,
+  // cheaper, was kept and by how much (energy by the objective).
   bool grid_cruises_searched = false;
   bool grid_cruises_kept = false;
   double grid_cruises_saving_kJ = 0.0;

@@ -134,9 +134,9 @@ struct TimeSearchResult {
   CruisePolishReport cruise_polish;  // what the cruise polish did to the converged run
   // How much more the converged run (before its polish) cost held than the grid's own run at
   // its price, as a share of the priced cost (LambdaRun::held_excess_share); above
-  // kGridCruisesCheckShare the time is
-  // searched again with the grid's own cruises (grid_cruises_searched), and that run is kept
-  // when it costs less (grid_cruises_kept, saving grid_cruises_saving_J).
+  // kGridCruisesCheckShare the time is searched again with the grid's own cruises
+  // (grid_cruises_searched), and that run is kept when it costs less (grid_cruises_kept,
+  // saving grid_cruises_saving_J).
   double held_excess_share = 0.0;
   bool grid_cruises_searched = false;
   bool grid_cruises_kept = false;

@@ -50,7 +50,7 @@ TEST(GridCruises, AFinerGridIsNoDearerWhereHeldCruisesCostMore) {
   ASSERT_TRUE(a.converged && b.converged);
   EXPECT_NEAR(a.run.sim.running_time_s, target_s, 0.01);
   EXPECT_NEAR(b.run.sim.running_time_s, target_s, 0.01);
-  // The held runs cost more than the grid's at a price searched, so the grid's own were searched.
+  // The converged run cost more held than the grid's at its price, so the grid's own were searched.
   EXPECT_GT(b.held_excess_share, dp::kGridCruisesCheckShare);
   EXPECT_TRUE(b.grid_cruises_searched);
   // Grid convergence: the finer grid's run is no dearer (to 0.01 %).
