@@ -67,6 +67,8 @@ constexpr double kMinBracket_m = 1e-9;
 // A run of short phases starts at a limit's rise when it starts this close to it (two steps of
 // the default 5 m grid, whose switch points fall on its stages).
 constexpr double kRiseSlack_m = 10.0;
+// A hold this long is polished on its own, short as it is.
+constexpr double kShortestCruise_m = 20.0;
 
 // The polished shape: one traction phase ending at the hold (index hold), the cruise, and the
 // phase that leaves it (index exit).
@@ -147,6 +149,30 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
         if (last == n || last < first) last = first;
         break;
       }
+    }
+  }
+  // No long hold nor a ride of a lower limit: the grid may break its cruise into short holds
+  // between short coasts and blips of traction (A6 -> A7 at 140 s: holds of 1 to 125 m from
+  // 87 m to 370 m, 0.018 % above one hold polished; A8 -> A9 at 120 s: 2 to 28 m from 196 m to
+  // 368 m), or hold briefly where the optimum holds not at all (A1 -> A2 at 89 s: 72 m, 0.041 %
+  // above traction and coast). A run of short phases that starts with a hold and spans at least
+  // short_phase_m, or holds somewhere for at least kShortestCruise_m, is that cruise.
+  if (first == n) {
+    for (std::size_t k = 1; k < n; ++k) {
+      if (program[k].control != Control::Hold) continue;
+      std::size_t j = k;
+      double longest_hold_m = 0.0;
+      for (; j < n && is_short_phase(j); ++j) {
+        if (program[j].control == Control::Hold) {
+          longest_hold_m = std::max(longest_hold_m, end_of(j) - program[j].from_m);
+        }
+      }
+      if (j < n && (program[j].from_m - program[k].from_m >= options.short_phase_m ||
+                    longest_hold_m >= kShortestCruise_m)) {
+        first = k;
+        break;
+      }
+      k = j;
     }
   }
   if (first == n || first == 0 || first > last) return std::nullopt;
@@ -451,6 +477,9 @@ struct CoastTie {
   // before the rise holds the lower limit, the run riding it, so it is searched after the rise.
   std::size_t hold_after_rise = 0;
   double rise_m = 0.0;
+  // A coast that runs on past the limit's start below its speed (it neither holds nor rides
+  // the lower limit): only its start is solved, and the phase after it stays free.
+  bool passes = false;
 };
 
 // Every coast of the cruise that runs, through coasts and holds only, into a lower limit
@@ -572,9 +601,15 @@ double braked_speed_ms(const physics::SimulationResult& sim, double from_m, doub
 // the limit this close below its speed meets it.
 constexpr double kTieWidth_m = 0.02;
 constexpr double kTieSpeed_ms = 1e-4;
+// A coast that runs this close below a lower limit's speed at its start touches it.
+constexpr double kTouchSpeed_ms = 0.05 / 3.6;
 // Coordinate search: at most this many rounds over the free switch points at one price, and a
 // round that moves every point less than the search tolerance ends it.
 constexpr int kMaxRounds = 12;
+// Moves along the time: the probe that measures how the time moves with a point, and the reach
+// of the search either way (in metres of the point that moves the time less).
+constexpr double kPairProbe_m = 4.0;
+constexpr double kPairReach_m = 160.0;
 
 }  // namespace
 
@@ -595,7 +630,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   if (!shape) return report;
   split_saturated_holds(*shape, run.sim, length_m, options.short_phase_m);
   const double c0 = shape->program[shape->exit].from_m;
-  const std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route(), steps);
+  std::vector<CoastTie> ties = tie_coasts_to_limits(*shape, engine.route(), steps);
   report.dropped_phases = shape->dropped;
   Polisher polisher(engine, run.start, target_s, tolerance_s, end, report);
   const std::size_t hold = shape->hold;
@@ -605,14 +640,22 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   // (fixed there), and the last phase when the end solves it (the stop's braking curve, or the
   // end speed of a run that ends at a pinned speed).
   std::vector<char> searched(n, 0);
-  for (std::size_t k = hold; k < n; ++k) searched[k] = 1;
-  for (const CoastTie& tie : ties) searched[tie.coast] = searched[tie.coast + 1] = 0;
-  const bool end_solved = !end.moving || std::isfinite(end.pinned_speed_ms);
-  if (end_solved && base.back().control == Control::MaxBrake) searched[n - 1] = 0;
   std::vector<std::size_t> free;
-  for (std::size_t k = hold; k < n; ++k) {
-    if (searched[k]) free.push_back(k);
-  }
+  const bool end_solved = !end.moving || std::isfinite(end.pinned_speed_ms);
+  auto mark_free = [&] {
+    std::fill(searched.begin(), searched.end(), 0);
+    for (std::size_t k = hold; k < n; ++k) searched[k] = 1;
+    for (const CoastTie& tie : ties) {
+      searched[tie.coast] = 0;
+      if (!tie.passes) searched[tie.coast + 1] = 0;
+    }
+    if (end_solved && base.back().control == Control::MaxBrake) searched[n - 1] = 0;
+    free.clear();
+    for (std::size_t k = hold; k < n; ++k) {
+      if (searched[k]) free.push_back(k);
+    }
+  };
+  mark_free();
   if (free.empty()) return report;
   const double price_step_m = std::max(options.search_step_m, options.price_search_step_m);
   ControlProgram current = base;
@@ -704,6 +747,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
     double lo = current[is_tied(k - 1) ? k - 2 : k - 1].from_m + 1.0;
     for (const CoastTie& tie : ties) {
       if (tie.hold_after_rise == k) lo = std::max(lo, tie.rise_m + 1.0);
+      if (tie.passes && tie.coast + 1 == k) lo = std::max(lo, tie.limit_m + 1.0);
     }
     std::size_t m = k + 1;
     if (m < n && is_tied(m)) ++m;
@@ -719,9 +763,10 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   // point; later rounds search a window around it that widens while the optimum sits on its
   // edge. (With the coasts into lower limits tied, the cost has no kink left inside a window.)
   std::vector<double> moved(free.size(), kInf);
-  auto optimise_at_price = [&] {
+  // Rounds from value (the run of `current`); moved_m: how far each free point moved in its
+  // last search (inf: never searched), which sets the window of its next.
+  auto run_rounds = [&](std::vector<double>& moved_m, double value) {
     const int budget_end = report.simulations + options.price_max_simulations;
-    double value = evaluate(hold);
     for (int round = 0; round < kMaxRounds && report.simulations < budget_end; ++round) {
       bool still = true;
       for (std::size_t i = 0; i < free.size(); ++i) {
@@ -730,8 +775,9 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
         if (!(lo_b < hi_b)) continue;
         const double origin_m = current[k].from_m;
         double x_start = origin_m;
-        double half = std::isfinite(moved[i]) ? std::max(options.price_first_step_m, 4.0 * moved[i])
-                                              : hi_b - lo_b;
+        double half = std::isfinite(moved_m[i])
+                          ? std::max(options.price_first_step_m, 4.0 * moved_m[i])
+                          : hi_b - lo_b;
         GoldenSectionResult g;
         auto at = [&](double x) {
           current[k].from_m = x;
@@ -743,7 +789,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
         // minimum in a point, and where the grid put the point need not be in the best one's
         // basin. (On a long cruise the scan's start moved the coordinate search along a flat
         // valley: two grids' starts then ended 0.011 % apart, so it is not done there.)
-        if (!std::isfinite(moved[i]) && shape->steps_down && options.first_scan_points > 0) {
+        if (!std::isfinite(moved_m[i]) && shape->steps_down && options.first_scan_points > 0) {
           // The scan's runs move the tied coasts with the point; they start again from where
           // they were, so the search after the scan starts as it would without it.
           const ControlProgram before_scan = current;
@@ -773,12 +819,112 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
           current[k].from_m = x_start;
         }
         value = evaluate(k);
-        moved[i] = std::abs(current[k].from_m - origin_m);
-        still = still && moved[i] < options.search_tolerance_m;
+        moved_m[i] = std::abs(current[k].from_m - origin_m);
+        still = still && moved_m[i] < options.search_tolerance_m;
       }
       if (still) break;
     }
     return value;
+  };
+  // Whether the switch points keep their order, a metre apart (tied coasts aside: solved).
+  auto in_order = [&] {
+    double last_m = -kInf;
+    for (std::size_t k = 1; k < n; ++k) {
+      if (is_tied(k)) continue;
+      if (!(current[k].from_m > last_m + 1.0)) return false;
+      last_m = current[k].from_m;
+    }
+    return current.back().from_m < length_m - 1.0;
+  };
+  // Moves along the time: each free hold's start (its speed) and the free point after it (the
+  // phase that leaves the hold) searched together, by golden section along the direction that
+  // keeps the running time (to first order: the times of runs with either point moved on by
+  // kPairProbe_m), up to kPairReach_m either way. A hold a little faster left a little earlier
+  // keeps the time, and along that valley a search of one point at a time advances less than
+  // its tolerance and stops: A11 -> A12 at 153 s kept its hold 5 m of traction short of the
+  // best (68.9 against 69.3 km/h) and its coast 11 m late, 0.013 % above a search of
+  // "traction, hold, coast, brake" on the simulator. Returns whether a move lowered value.
+  auto hold_moves = [&](double& value) {
+    bool lowered = false;
+    for (std::size_t i = 0; i + 1 < free.size(); ++i) {
+      const std::size_t ki = free[i], kj = free[i + 1];
+      if (current[ki].control != Control::Hold || exhausted()) continue;
+      const double xi = current[ki].from_m, xj = current[kj].from_m;
+      const double t0 = recent.running_time_s;
+      auto time_moved = [&](std::size_t k) {
+        const double keep = current[k].from_m;
+        current[k].from_m = keep + kPairProbe_m;
+        const double t = in_order() && std::isfinite(evaluate(ki)) ? recent.running_time_s : kInf;
+        current[k].from_m = keep;
+        return t - t0;
+      };
+      const double dti = time_moved(ki), dtj = time_moved(kj);
+      // Per unit of the search, the point that moves the time less moves a metre.
+      const double scale = std::max(std::abs(dti), std::abs(dtj));
+      if (std::isfinite(dti) && std::isfinite(dtj) && dti * dtj > 0.0) {
+        const double ui = dtj / scale, uj = -dti / scale;
+        auto at = [&](double a) {
+          current[ki].from_m = xi + a * ui;
+          current[kj].from_m = xj + a * uj;
+          return in_order() ? evaluate(ki) : kInf;
+        };
+        const GoldenSectionResult g = golden_section_minimum(at, -kPairReach_m, kPairReach_m,
+                                                             options.search_tolerance_m, 40, true);
+        lowered = lowered || g.best_f < value;
+        current[ki].from_m = g.best_f < value ? xi + g.best_x * ui : xi;
+        current[kj].from_m = g.best_f < value ? xj + g.best_x * uj : xj;
+      }
+      value = evaluate(ki);
+    }
+    return lowered;
+  };
+  // A coast that runs past a lower limit's start at the limit's speed (capped there, or within
+  // kTouchSpeed_ms below it) and on below it: the cost has a kink along the runs that just
+  // touch the limit, and a search of one point at a time stops on it where the optimum lies
+  // along it (the hold a little faster and the coast a little earlier: A13 -> A14 at 164 s
+  // and 173 s, whose coasts touch the 65 km/h and the 50 km/h limit, stood 0.066 % and 0.054 %
+  // above a search of "traction, hold, coast, brake" on the simulator). The first such coast
+  // and limit, in track order.
+  auto touching_coast = [&]() -> std::optional<CoastTie> {
+    for (std::size_t k = hold + 1; k < n; ++k) {
+      if (current[k].control != Control::Coast || is_tied(k)) continue;
+      const double end_m = k + 1 < n ? current[k + 1].from_m : length_m;
+      for (double d : steps.drops_m) {
+        if (!(d > current[k].from_m + 1.0 && d < end_m - 1.0 && d < length_m - 1.0)) continue;
+        const double limit_ms = engine.route().speed_limit_ms(d + 1e-6);
+        const double braked = braked_speed_ms(recent, current[k - 1].from_m, d,
+                                              engine.train().effective_mass_kg(), limit_ms);
+        if (braked > 0.0 || limit_ms - speed_at(recent, d) < kTouchSpeed_ms) {
+          return CoastTie{k, d, limit_ms, 0, 0.0, true};
+        }
+      }
+    }
+    return std::nullopt;
+  };
+  // The optimum under one price: the rounds; where the moves along the time lower the cost,
+  // the rounds again from there (a window of price_first_step_m around each point); then,
+  // where the run touches a lower limit from a coast that runs on, the rounds again with that
+  // coast tied to the limit (its start solved from the points before it, so they move along
+  // the kink). The tie is let go again, the cheaper of the two kept.
+  auto optimise_at_price = [&] {
+    double value = run_rounds(moved, evaluate(hold));
+    if (std::isfinite(value) && hold_moves(value)) {
+      std::vector<double> near(free.size(), 0.0);
+      value = run_rounds(near, value);
+    }
+    const std::optional<CoastTie> touch = touching_coast();
+    if (!touch || !std::isfinite(value) || exhausted()) return value;
+    const ControlProgram before = current;
+    auto at = std::find_if(ties.begin(), ties.end(),
+                           [&](const CoastTie& t) { return t.coast > touch->coast; });
+    ties.insert(at, *touch);
+    mark_free();
+    std::vector<double> ridge_moved(free.size(), 0.0);
+    const double ridge = run_rounds(ridge_moved, evaluate(hold));
+    ties.erase(std::find_if(ties.begin(), ties.end(), [&](const CoastTie& t) { return t.passes; }));
+    mark_free();
+    if (!(ridge < value)) current = before;
+    return evaluate(hold);
   };
   auto time_at_price = [&](double log_lambda) {
     lambda = std::exp(log_lambda);

@@ -19,9 +19,12 @@ namespace {
 
 TEST(MinRegime, PhasesReachTheMinimumAndTheTimeIsKept) {
   const physics::Train train = data::default_train();
-  // A8 -> A9 in 130 s: holds of 1-3 m between coasts on the descent.
+  // A8 -> A9 in 130 s with the grid's own cruises: holds of 1-3 m between coasts on the
+  // descent (the default holds the cruise and polishes it into one hold, with nothing to merge).
   const physics::Route route = data::build_route(data::default_line(), "A8", "A9", train);
-  const dp::SectionEngine engine(train, route, {});
+  dp::EngineOptions grid_cruises;
+  grid_cruises.cruise_as_hold = false;
+  const dp::SectionEngine engine(train, route, grid_cruises);
   const dp::TimeSearchResult found = dp::solve_for_time(engine, 130.0, {});
   ASSERT_TRUE(found.converged);
 
