@@ -77,14 +77,14 @@ INSTANTIATE_TEST_SUITE_P(ReferenceLine, SectionOptimality,
                          });
 
 // Issue 24, item 5: within 0.01 % of the same independent search, at running times where the
-// grid's run was polished badly or not at all (frontier version 12 stood 0.018 % to 0.069 %
-// above it there, docs/frontiers.md): A13 -> A14 at 164 s and 173 s (coasts that touch a lower
-// limit and run on below it), A6 -> A7 at 140 s and A7 -> A8 at 135 s (a cruise broken into
-// holds of a few metres to 125 m, none long), A1 -> A2 at 89 s and 127 s (one short hold),
-// A11 -> A12 at 153 s (a hold's speed and its coast's start searched one at a time). The
-// search meets its time to 0.1 ms; the DP's run to its 1 ms tolerance, so its energy is
-// compared at the target time by its price (energy + lambda * (time - target), the first-order
-// change along the frontier).
+// grid's run was polished badly or not at all (frontier version 12 stood 0.013 % to 0.066 %
+// above it there, docs/journeys.md): A13 -> A14 at 164 s and 173 s (coasts that touch a lower
+// limit and run on below it), A6 -> A7 at 140 s, A7 -> A8 at 135 s and A1 -> A2 at 127 s (a
+// cruise broken into holds of a few metres to 150 m among short coasts, none 200 m long),
+// A1 -> A2 at 89 s (one short hold), A11 -> A12 at 153 s (a hold's speed and its coast's start
+// searched one at a time). The search meets its time to 0.1 ms; the DP's run to its 1 ms
+// tolerance, so its energy is compared at the target time by its price (energy + lambda *
+// (time - target), the first-order change along the frontier).
 class SectionFamilyOptimum : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SectionFamilyOptimum, WithinAHundredthOfAPercentOfTheIndependentSearch) {
