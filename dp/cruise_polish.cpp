@@ -80,9 +80,26 @@ struct CruiseShape {
   bool steps_down = false;
 };
 
+// The speed of a run at s_m (linear between trace points).
+double speed_at(const physics::SimulationResult& sim, double s_m) {
+  const auto& tr = sim.trace;
+  if (tr.empty()) return 0.0;
+  std::size_t lo = 0, hi = tr.size() - 1;
+  if (s_m <= tr[lo].s_m) return tr[lo].v_ms;
+  if (s_m >= tr[hi].s_m) return tr[hi].v_ms;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (tr[mid].s_m <= s_m ? lo : hi) = mid;
+  }
+  const double w = (s_m - tr[lo].s_m) / std::max(1e-12, tr[hi].s_m - tr[lo].s_m);
+  return tr[lo].v_ms + w * (tr[hi].v_ms - tr[lo].v_ms);
+}
+
 // Where the route's limit steps down (below the limit before it) and up, in track order.
 struct LimitSteps {
   std::vector<double> drops_m, rises_m;
+  // The limit just before each rise (parallel to rises_m).
+  std::vector<double> below_rise_ms;
   double length_m = 0.0;
   // Where the limit rises again after s_m (the route's end when it does not).
   double rise_after_m(double s_m) const {
@@ -100,15 +117,19 @@ LimitSteps limit_steps(const physics::Route& route) {
   for (std::size_t i = 1; i < segs.size(); ++i) {
     if (segs[i].speed_limit_ms < segs[i - 1].speed_limit_ms - 1e-9)
       steps.drops_m.push_back(segs[i].start_m);
-    if (segs[i].speed_limit_ms > segs[i - 1].speed_limit_ms + 1e-9)
+    if (segs[i].speed_limit_ms > segs[i - 1].speed_limit_ms + 1e-9) {
       steps.rises_m.push_back(segs[i].start_m);
+      steps.below_rise_ms.push_back(segs[i - 1].speed_limit_ms);
+    }
   }
   return steps;
 }
 
 // Drops the short phases inside the cruise (first hold to last hold). nullopt when the program
-// has no cruise to polish. steps: where the route's limit steps down and up.
-std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double length_m,
+// has no cruise to polish. sim: the program's run; steps: where the route's limit steps down
+// and up.
+std::optional<CruiseShape> cruise_shape(const ControlProgram& program,
+                                        const physics::SimulationResult& sim, double length_m,
                                         const LimitSteps& steps,
                                         const CruisePolishOptions& options) {
   const std::vector<double>& drops_m = steps.drops_m;
@@ -236,14 +257,19 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program, double le
     // A run that starts where the limit rises begins with the acceleration to the higher
     // limit: its phases up to the last traction are that traction, and the rest (the grid's
     // staircase to the hold and coast after it) is merged on its own. Merged whole, its coasts
-    // would outweigh the traction and the run would coast from the rise.
+    // would outweigh the traction and the run would coast from the rise. Only traction that
+    // ends above the lower limit is that acceleration: a blip that ends below it (A2 -> A3 at
+    // 120 s: 5 m from 53.8 to 54.9 km/h, 5 m before the rise from 55 km/h) is part of the
+    // cruise, and taken as an acceleration it made the cruise a coast (0.011 % above the
+    // independent search).
     std::size_t last_traction = n;
     for (std::size_t i = k; i < j; ++i) {
       if (program[i].control == Control::MaxTraction) last_traction = i;
     }
     bool at_rise = false;
-    for (double r : steps.rises_m) {
-      at_rise = at_rise || std::abs(program[k].from_m - r) <= kRiseSlack_m;
+    for (std::size_t r = 0; r < steps.rises_m.size() && last_traction < n; ++r) {
+      at_rise = at_rise || (std::abs(program[k].from_m - steps.rises_m[r]) <= kRiseSlack_m &&
+                            speed_at(sim, end_of(last_traction)) > steps.below_rise_ms[r]);
     }
     if (at_rise && last_traction < n && last_traction + 1 < j) {
       if (shape.program.back().control != Control::MaxTraction) {
@@ -561,21 +587,6 @@ std::vector<CoastTie> tie_coasts_to_limits(CruiseShape& shape, const physics::Ro
   return ties;
 }
 
-// The speed of a run at s_m (linear between trace points).
-double speed_at(const physics::SimulationResult& sim, double s_m) {
-  const auto& tr = sim.trace;
-  if (tr.empty()) return 0.0;
-  std::size_t lo = 0, hi = tr.size() - 1;
-  if (s_m <= tr[lo].s_m) return tr[lo].v_ms;
-  if (s_m >= tr[hi].s_m) return tr[hi].v_ms;
-  while (hi - lo > 1) {
-    const std::size_t mid = (lo + hi) / 2;
-    (tr[mid].s_m <= s_m ? lo : hi) = mid;
-  }
-  const double w = (s_m - tr[lo].s_m) / std::max(1e-12, tr[hi].s_m - tr[lo].s_m);
-  return tr[lo].v_ms + w * (tr[hi].v_ms - tr[lo].v_ms);
-}
-
 // The speed a run loses to its brakes in the steps that end after from_m and by to_m: their
 // braking work over the effective mass and v_ref (0 when it does not brake). It grows from 0
 // as a coast into a lower limit starts later than the one that meets the limit, as the speed
@@ -626,7 +637,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
   }
   const double length_m = engine.route().length_m();
   const LimitSteps steps = limit_steps(engine.route());
-  std::optional<CruiseShape> shape = cruise_shape(run.program, length_m, steps, options);
+  std::optional<CruiseShape> shape = cruise_shape(run.program, run.sim, length_m, steps, options);
   if (!shape) return report;
   split_saturated_holds(*shape, run.sim, length_m, options.short_phase_m);
   const double c0 = shape->program[shape->exit].from_m;

@@ -25,7 +25,7 @@ namespace ecorail::dp {
 
 // Bumped whenever the engine's results change, so frontiers stored by an older engine are
 // never read.
-inline constexpr const char* kFrontierVersion = "ecorail-frontier-13";
+inline constexpr const char* kFrontierVersion = "ecorail-frontier-14";
 
 struct SectionLibraryOptions {
   EngineOptions engine;

@@ -82,9 +82,11 @@ INSTANTIATE_TEST_SUITE_P(ReferenceLine, SectionOptimality,
 // limit and run on below it), A6 -> A7 at 140 s, A7 -> A8 at 135 s and A1 -> A2 at 127 s (a
 // cruise broken into holds of a few metres to 150 m among short coasts, none 200 m long),
 // A1 -> A2 at 89 s (one short hold), A11 -> A12 at 153 s (a hold's speed and its coast's start
-// searched one at a time). The search meets its time to 0.1 ms; the DP's run to its 1 ms
-// tolerance, so its energy is compared at the target time by its price (energy + lambda *
-// (time - target), the first-order change along the frontier).
+// searched one at a time); A2 -> A3 at 120 s (version 13: +0.011 %, a blip of traction 5 m before
+// a limit's rise taken as the acceleration to the higher limit, its cruise polished as a coast).
+// The search meets its time to 0.1 ms; the DP's run to its 1 ms tolerance, so its energy is
+// compared at the target time by its price (energy + lambda * (time - target), the first-order
+// change along the frontier).
 class SectionFamilyOptimum : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SectionFamilyOptimum, WithinAHundredthOfAPercentOfTheIndependentSearch) {
@@ -113,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(ReferenceLine, SectionFamilyOptimum,
                          ::testing::Values(Case{"A13", "A14", 164.0}, Case{"A13", "A14", 173.0},
                                            Case{"A6", "A7", 140.0}, Case{"A7", "A8", 135.0},
                                            Case{"A1", "A2", 89.0}, Case{"A1", "A2", 127.0},
-                                           Case{"A11", "A12", 153.0}),
+                                           Case{"A11", "A12", 153.0}, Case{"A2", "A3", 120.0}),
                          [](const auto& info) {
                            return std::string(info.param.from) + info.param.to + "_" +
                                   std::to_string(static_cast<int>(info.param.time_s));
