@@ -38,8 +38,8 @@ void BM_SectionFamily(benchmark::State& state) {
   for (auto _ : state) {
     points = above_1e4 = above_5e5 = 0;
     worst_percent = -INFINITY;
-    for (int i = 0; i + 1 < static_cast<int>(line.stations.size()); ++i) {
-      if (i != arg) continue;
+    {
+      const std::size_t i = static_cast<std::size_t>(arg);
       const std::string& from = line.stations[i].name;
       const std::string& to = line.stations[i + 1].name;
       const physics::Route route = data::build_route(line, from, to, train);

@@ -267,11 +267,14 @@ std::optional<CruiseShape> cruise_shape(const ControlProgram& program,
       if (program[i].control == Control::MaxTraction) last_traction = i;
     }
     bool at_rise = false;
-    for (std::size_t r = 0; r < steps.rises_m.size() && last_traction < n; ++r) {
-      at_rise = at_rise || (std::abs(program[k].from_m - steps.rises_m[r]) <= kRiseSlack_m &&
-                            speed_at(sim, end_of(last_traction)) > steps.below_rise_ms[r]);
+    if (last_traction < n) {
+      const double traction_end_ms = speed_at(sim, end_of(last_traction));
+      for (std::size_t r = 0; r < steps.rises_m.size(); ++r) {
+        at_rise = at_rise || (std::abs(program[k].from_m - steps.rises_m[r]) <= kRiseSlack_m &&
+                              traction_end_ms > steps.below_rise_ms[r]);
+      }
     }
-    if (at_rise && last_traction < n && last_traction + 1 < j) {
+    if (at_rise && last_traction + 1 < j) {
       if (shape.program.back().control != Control::MaxTraction) {
         shape.program.push_back({program[k].from_m, Control::MaxTraction});
       }
@@ -901,7 +904,7 @@ CruisePolishReport polish_cruise(const SectionEngine& engine, double target_s, d
       if (current[k].control != Control::Coast || is_tied(k)) continue;
       const double end_m = k + 1 < n ? current[k + 1].from_m : length_m;
       for (double d : steps.drops_m) {
-        if (!(d > current[k].from_m + 1.0 && d < end_m - 1.0 && d < length_m - 1.0)) continue;
+        if (!(d > current[k].from_m + 1.0 && d < end_m - 1.0)) continue;
         const double limit_ms = engine.route().speed_limit_ms(d + 1e-6);
         const double braked = braked_speed_ms(recent, current[k - 1].from_m, d,
                                               engine.train().effective_mass_kg(), limit_ms);

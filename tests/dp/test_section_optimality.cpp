@@ -44,6 +44,12 @@ struct SolvedCase {
         motion(train, route, envelope) {}
 };
 
+// The test's name for a case: "A6A7_100".
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  return std::string(info.param.from) + info.param.to + "_" +
+         std::to_string(static_cast<int>(info.param.time_s));
+}
+
 class SectionOptimality : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SectionOptimality, DpIsNeverWorseThanTheIndependentSearch) {
@@ -71,10 +77,7 @@ INSTANTIATE_TEST_SUITE_P(ReferenceLine, SectionOptimality,
                          ::testing::Values(Case{"A6", "A7", 100.0}, Case{"A6", "A7", 110.0},
                                            Case{"A6", "A7", 120.0}, Case{"A6", "A7", 130.0},
                                            Case{"A3", "A4", 150.0}, Case{"A12", "A13", 110.0}),
-                         [](const auto& info) {
-                           return std::string(info.param.from) + info.param.to + "_" +
-                                  std::to_string(static_cast<int>(info.param.time_s));
-                         });
+                         case_name);
 
 // Issue 24, item 5: within 0.01 % of the same independent search, at running times where the
 // grid's run was polished badly or not at all (frontier version 12 stood 0.013 % to 0.066 %
@@ -116,10 +119,7 @@ INSTANTIATE_TEST_SUITE_P(ReferenceLine, SectionFamilyOptimum,
                                            Case{"A6", "A7", 140.0}, Case{"A7", "A8", 135.0},
                                            Case{"A1", "A2", 89.0}, Case{"A1", "A2", 127.0},
                                            Case{"A11", "A12", 153.0}, Case{"A2", "A3", 120.0}),
-                         [](const auto& info) {
-                           return std::string(info.param.from) + info.param.to + "_" +
-                                  std::to_string(static_cast<int>(info.param.time_s));
-                         });
+                         case_name);
 
 }  // namespace
 }  // namespace ecorail
